@@ -1,0 +1,23 @@
+// Compiles every shared header with nvcc, so nothing host-only creeps into shared/.
+#include "../shared/bindings.h"
+#include "../shared/estimate.h"
+#include "../shared/eye_trace.h"
+#include "../shared/gather.h"
+#include "../shared/grid.h"
+#include "../shared/photon_trace.h"
+#include "../shared/progressive.h"
+#include "../shared/tonemap.h"
+
+namespace photon {
+__global__ void sharedCheck(Bindings bindings) {
+    uint i = blockIdx.x * blockDim.x + threadIdx.x;
+    PhotonPath path = startPhotonPath(bindings, i);
+    Photon p;
+    uint store = photonBounce(bindings, path, p);
+    bindings.hitPoints[i] = tracePixel(bindings, i);
+    bindings.frameRadiance[i] = vec4(gatherPixel(bindings, i), float(store));
+    bindings.accumulation[i] = accumulateMean(bindings.accumulation[i], bindings.frameRadiance[i], bindings.params.accumulated);
+    bindings.photonKeys[i] = photonCellKey(p.position, bindings.params.grids[0]);
+    bindings.accumulation[i].x += tonemap(vec3(1.0f), 1.0f, TONEMAP_ACES).x + progressiveRadius(1.0f, 0.7f, 3u);
+}
+}  // namespace photon

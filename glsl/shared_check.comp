@@ -1,0 +1,31 @@
+#version 460
+// Compiles every shared header as GLSL, so nothing C++-only creeps into shared/.
+#extension GL_GOOGLE_include_directive : require
+#include "../shared/bindings.h"
+#include "../shared/rng.h"
+#include "../shared/math.h"
+#include "../shared/sampling.h"
+#include "../shared/intersect.h"
+#include "../shared/bsdf.h"
+#include "../shared/lights.h"
+#include "../shared/photon_trace.h"
+#include "../shared/grid.h"
+#include "../shared/estimate.h"
+#include "../shared/eye_trace.h"
+#include "../shared/gather.h"
+#include "../shared/progressive.h"
+#include "../shared/tonemap.h"
+
+layout(local_size_x = 64) in;
+
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    PhotonPath path = startPhotonPath(i);
+    Photon p;
+    uint store = photonBounce(path, p);
+    hitPoints[i] = tracePixel(i);
+    frameRadiance[i] = vec4(gatherPixel(i), float(store));
+    accumulation[i] = accumulateMean(accumulation[i], frameRadiance[i], params.accumulated);
+    photonKeys[i] = photonCellKey(p.position, params.grids[0]);
+    accumulation[i].x += tonemap(vec3(1.0f), 1.0f, TONEMAP_ACES).x + progressiveRadius(1.0f, 0.7f, 3u);
+}

@@ -1,0 +1,105 @@
+// Constants and enumerations shared by every backend. Enumerations are plain uint constants so that
+// they mean the same in buffers, in GLSL and in C++.
+#ifndef PHOTON_SHARED_CONSTANTS_H
+#define PHOTON_SHARED_CONSTANTS_H
+
+#include "portable.h"
+
+PH_NAMESPACE_BEGIN
+
+PH_CONST float PI = 3.14159265358979323846f;
+PH_CONST float TWO_PI = 6.28318530717958647692f;
+PH_CONST float INV_PI = 0.31830988618379067154f;
+PH_CONST float INV_TWO_PI = 0.15915494309189533577f;
+PH_CONST float INV_FOUR_PI = 0.07957747154594766788f;
+PH_CONST float FLOAT_MAX = 3.402823466e+38f;
+PH_CONST uint NONE = 0xffffffffu;
+
+// Material types (Material::type).
+PH_CONST uint MATERIAL_DIFFUSE = 0u;  // Lambertian: albedo/π
+PH_CONST uint MATERIAL_MIRROR = 1u;   // perfect specular reflection, coloured by `specular`
+PH_CONST uint MATERIAL_GLASS = 2u;    // smooth dielectric with exact Fresnel; transmission tinted by `specular`
+PH_CONST uint MATERIAL_GLOSSY = 3u;   // Lambertian base + GGX microfacet lobe (Walter et al. 2007)
+PH_CONST uint MATERIAL_EMITTER = 4u;  // the visible surface of an area light: emits, absorbs everything
+PH_CONST uint MATERIAL_REFLECTIVE = 5u;  // Lambertian base under a perfect mirror coat (Whitted)
+
+// Light types (Light::type).
+PH_CONST uint LIGHT_POINT = 0u;
+PH_CONST uint LIGHT_SPOT = 1u;
+PH_CONST uint LIGHT_SPHERE = 2u;
+PH_CONST uint LIGHT_QUAD = 3u;
+
+// Emission profile of a point light (Light::profile).
+PH_CONST uint EMIT_ISOTROPIC = 0u;   // I = Φ/4π in every direction
+PH_CONST uint EMIT_HEMISPHERE = 1u;  // Lambertian point source about `axis`: I = Φ cosθ/π (the seed's light)
+
+// Primitive kinds (Hit::kind).
+PH_CONST uint PRIM_SPHERE = 0u;
+PH_CONST uint PRIM_PLANE = 1u;
+PH_CONST uint PRIM_QUAD = 2u;
+PH_CONST uint PRIM_TRIANGLE = 3u;
+
+// Radiance estimators (FrameParams::estimator).
+PH_CONST uint ESTIMATOR_CELL = 0u;         // the seed's: photons of the containing grid cell
+PH_CONST uint ESTIMATOR_RADIUS = 1u;       // fixed radius, filtered by a kernel
+PH_CONST uint ESTIMATOR_KNN = 2u;          // k nearest photons within a maximum radius (Jensen)
+PH_CONST uint ESTIMATOR_PROGRESSIVE = 3u;  // fixed radius per frame, shrinking (Knaus & Zwicker 2011)
+
+// Density-estimation kernels (FrameParams::kernel).
+PH_CONST uint KERNEL_BOX = 0u;
+PH_CONST uint KERNEL_CONE = 1u;          // Jensen's cone filter, k = 1
+PH_CONST uint KERNEL_EPANECHNIKOV = 2u;
+
+// Photon map grids (GridParams::kind).
+PH_CONST uint GRID_BOUNDED = 0u;  // the seed's k³ cells over the scene's bounding cube, clamped
+PH_CONST uint GRID_HASHED = 1u;   // unbounded cells hashed into a table (Teschner et al. 2003)
+
+// How the global map reaches the image (FrameParams::globalMode).
+PH_CONST uint GLOBAL_DIRECT = 0u;       // estimate indirect light at the eye hit itself
+PH_CONST uint GLOBAL_FINAL_GATHER = 1u; // one bounce of gather rays, global map at their hits
+
+// What the gather stage writes (FrameParams::view).
+PH_CONST uint VIEW_FINAL = 0u;
+PH_CONST uint VIEW_DIRECT = 1u;    // emission + direct light only
+PH_CONST uint VIEW_GLOBAL = 2u;    // global-map estimate only
+PH_CONST uint VIEW_CAUSTIC = 3u;   // caustic-map estimate only
+PH_CONST uint VIEW_GRID = 4u;      // photons in the hit point's cell, as a heat map
+
+// Photon maps.
+PH_CONST uint MAP_GLOBAL = 0u;
+PH_CONST uint MAP_CAUSTIC = 1u;
+PH_CONST uint MAP_COUNT = 2u;
+
+// Slots of the counters buffer.
+PH_CONST uint COUNTER_STORED_GLOBAL = 0u;   // photons appended to the global map this frame
+PH_CONST uint COUNTER_STORED_CAUSTIC = 1u;  // photons appended to the caustic map this frame
+PH_CONST uint COUNTER_COUNT = 4u;
+
+// photonBounce() result bits.
+PH_CONST uint STORE_GLOBAL = 1u;
+PH_CONST uint STORE_CAUSTIC = 2u;
+
+// PhotonPath::flags bits.
+PH_CONST uint PATH_ALIVE = 1u;
+PH_CONST uint PATH_SPECULAR_ONLY = 2u;  // every bounce so far was a mirror or glass interaction
+PH_CONST uint PATH_CAUSTIC_PASS = 4u;   // emitted towards a specular object for the caustic map
+PH_CONST uint PATH_FROM_TARGET = 8u;    // its first surface was a caustic target (see photon_trace.h)
+
+// FrameParams::flags bits.
+PH_CONST uint FLAG_PIXEL_CENTER = 1u;     // one ray through each pixel centre: no jitter, no lens
+PH_CONST uint FLAG_SPLIT_CAUSTICS = 2u;   // caustic paths come from the caustic pass only
+
+// Independent random streams, so that no two stages draw the same numbers.
+PH_CONST uint STREAM_PHOTON = 0x1b873593u;
+PH_CONST uint STREAM_CAMERA = 0xcc9e2d51u;
+PH_CONST uint STREAM_GATHER = 0x85ebca6bu;
+
+// Fixed capacities.
+PH_CONST uint KNN_MAX = 64u;              // largest k of the k-nearest estimator
+PH_CONST uint QUERY_CELLS_MAX = 8u;       // hashed grids use cells of edge 2r: a ball meets ≤ 2³
+PH_CONST uint CAUSTIC_TARGETS_MAX = 64u;  // specular objects the caustic pass aims at
+PH_CONST uint LIGHTS_MAX = 64u;
+
+PH_NAMESPACE_END
+
+#endif

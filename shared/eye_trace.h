@@ -1,0 +1,128 @@
+// The eye pass, without recursion: a camera ray (jittered for anti-aliasing, through a thin lens
+// for depth of field) follows mirrors and glass to the first non-specular surface, where direct
+// light is computed with shadow rays and a HitPoint is left for the gather stage. At glass, one of
+// reflection and refraction is chosen with the Fresnel probability, and at a reflective surface
+// its mirror coat or its base, each with its share of the weight: frames average the choices.
+#ifndef PHOTON_SHARED_EYE_TRACE_H
+#define PHOTON_SHARED_EYE_TRACE_H
+
+#include "bsdf.h"
+#include "lights.h"
+
+PH_NAMESPACE_BEGIN
+
+// Camera ray through pixel (px, py); y grows downwards. Four draws unless FLAG_PIXEL_CENTER.
+PH_FN Ray cameraRay(PH_IN(Camera) camera, uint px, uint py, uint width, uint height, uint flags, PH_INOUT(Rng) rng) {
+    bool center = (flags & FLAG_PIXEL_CENTER) != 0u;
+    float jx = 0.5f;
+    float jy = 0.5f;
+    if (!center) {
+        jx = rngNext(rng);
+        jy = rngNext(rng);
+    }
+    float sx = (2.0f * (float(px) + jx) / float(width) - 1.0f) * camera.tanHalfFovY * camera.aspect;
+    float sy = (1.0f - 2.0f * (float(py) + jy) / float(height)) * camera.tanHalfFovY;
+    vec3 direction = unitVector(camera.forward + sx * camera.right + sy * camera.up);
+    vec3 origin = camera.position;
+    if (!center && camera.lensRadius > 0.0f) {
+        float u1 = rngNext(rng);
+        float u2 = rngNext(rng);
+        vec2 lens = camera.lensRadius * sampleUniformDisk(u1, u2);
+        vec3 focus = origin + direction * (camera.focusDistance / dot(direction, camera.forward));
+        origin = origin + lens.x * camera.right + lens.y * camera.up;
+        direction = unitVector(focus - origin);
+    }
+    return makeRay(origin, direction, FLOAT_MAX);
+}
+
+// Reflected direct light at x from every light, lightSamples shadow rays each.
+PH_FN vec3 directLight(BUF_PARAM vec3 x, vec3 n, vec3 wo, PH_IN(Material) m, PH_INOUT(Rng) rng) {
+    vec3 sum = vec3(0.0f);
+    uint samples = BUF(params).lightSamples;
+    for (uint l = 0u; l < BUF(params).scene.lightCount; ++l) {
+        Light light = BUF(lights)[l];
+        for (uint j = 0u; j < samples; ++j) {
+            LightSample ls = sampleDirectLight(light, x, rng);
+            float cosine = dot(n, ls.direction);
+            if (cosine <= 0.0f || isBlack(ls.radiance)) {
+                continue;
+            }
+            vec3 origin = offsetRayOrigin(x, n, ls.direction);
+            if (!traceOccluded(BUF_ARG origin, ls.direction, ls.distance * (1.0f - 1.0e-4f))) {
+                sum += evalBsdf(m, wo, ls.direction, n) * ls.radiance * cosine;
+            }
+        }
+    }
+    return sum / float(max(samples, 1u));
+}
+
+PH_FN HitPoint emptyHitPoint() {
+    HitPoint hp;
+    hp.position = vec3(0.0f);
+    hp.material = NONE;
+    hp.weight = vec3(0.0f);
+    hp.normal = 0u;
+    hp.direct = vec3(0.0f);
+    hp.outgoing = 0u;
+    return hp;
+}
+
+PH_FN HitPoint tracePixel(BUF_PARAM uint pixel) {
+    uint width = BUF(params).width;
+    Rng rng = rngCreate(pixel, BUF(params).frameIndex, BUF(params).seed, STREAM_CAMERA);
+    Ray ray = cameraRay(BUF(params).camera, pixel % width, pixel / width, width, BUF(params).height,
+                        BUF(params).flags, rng);
+    HitPoint hp = emptyHitPoint();
+    vec3 weight = vec3(1.0f);
+    for (uint depth = 0u; depth < BUF(params).maxEyeDepth; ++depth) {
+        Hit hit;
+        if (!traceClosest(BUF_ARG ray, hit)) {
+            hp.direct += weight * BUF(params).scene.background;
+            break;
+        }
+        Material m = BUF(materials)[hit.material];
+        vec3 wo = -ray.direction;
+        if (m.type == MATERIAL_EMITTER) {
+            if (dot(wo, hit.normal) > 0.0f) {
+                hp.direct += weight * m.emission;
+            }
+            break;
+        }
+        // A reflective surface: its mirror coat continues the path, or its base ends it here.
+        bool mirrorCoat = false;
+        if (m.type == MATERIAL_REFLECTIVE) {
+            float pMirror = mirrorCoatProbability(m);
+            mirrorCoat = rngNext(rng) < pMirror;
+            weight *= mirrorCoat ? vec3(1.0f) : vec3(1.0f / (1.0f - pMirror));
+        }
+        if (isDiffuseLike(m) && !mirrorCoat) {
+            vec3 n = facingNormal(hit.normal, wo);
+            hp.position = hit.position;
+            hp.material = hit.material;
+            hp.weight = weight;
+            hp.normal = octEncode(n);
+            hp.outgoing = octEncode(wo);
+            hp.direct += weight * directLight(BUF_ARG hit.position, n, wo, diffusePart(m), rng);
+            break;
+        }
+        BsdfSample bs;
+        if (mirrorCoat) {
+            float pMirror = mirrorCoatProbability(m);
+            bs.direction = reflectAbout(wo, facingNormal(hit.normal, wo));
+            bs.weight = m.specular / pMirror;
+            bs.lobe = LOBE_SPECULAR;
+        } else {
+            bs = sampleBsdf(m, wo, hit.normal, rng);
+        }
+        if (bs.lobe == LOBE_NONE) {
+            break;
+        }
+        weight *= bs.weight;
+        ray = makeRay(offsetRayOrigin(hit.position, hit.normal, bs.direction), bs.direction, FLOAT_MAX);
+    }
+    return hp;
+}
+
+PH_NAMESPACE_END
+
+#endif

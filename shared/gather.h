@@ -1,0 +1,99 @@
+// The gather stage: at each pixel's hit point, add the photon estimates to the direct light.
+//   caustics: the caustic map, estimated at the hit point itself.
+//   indirect: GLOBAL_DIRECT: the global map at the hit point (Jensen's "visualise the global map");
+//             GLOBAL_FINAL_GATHER: gatherRays rays sampled from the BSDF, each followed through
+//             mirrors and glass to a diffuse surface, where the global map (holding every diffuse
+//             photon in this mode) gives the radiance towards the hit point. Rays that end on a
+//             light add nothing: direct light and caustics are already counted.
+#ifndef PHOTON_SHARED_GATHER_H
+#define PHOTON_SHARED_GATHER_H
+
+#include "estimate.h"
+#include "intersect.h"
+
+PH_NAMESPACE_BEGIN
+
+PH_FN Shading makeShading(vec3 position, vec3 normal, vec3 wo, PH_IN(Material) m) {
+    Shading s;
+    s.position = position;
+    s.normal = normal;
+    s.wo = wo;
+    s.material = m;
+    return s;
+}
+
+PH_FN vec3 finalGather(BUF_PARAM PH_IN(Shading) s, PH_INOUT(Rng) rng) {
+    uint rays = BUF(params).gatherRays;
+    vec3 sum = vec3(0.0f);
+    for (uint g = 0u; g < rays; ++g) {
+        BsdfSample bs = sampleBsdf(s.material, s.wo, s.normal, rng);
+        if (bs.lobe == LOBE_NONE) {
+            continue;
+        }
+        vec3 weight = bs.weight;
+        Ray ray = makeRay(offsetRayOrigin(s.position, s.normal, bs.direction), bs.direction, FLOAT_MAX);
+        for (uint depth = 0u; depth < BUF(params).maxEyeDepth; ++depth) {
+            Hit hit;
+            if (!traceClosest(BUF_ARG ray, hit)) {
+                break;
+            }
+            Material m = BUF(materials)[hit.material];
+            vec3 wo = -ray.direction;
+            if (isDiffuseLike(m)) {
+                Shading there = makeShading(hit.position, facingNormal(hit.normal, wo), wo, diffusePart(m));
+                sum += weight * photonEstimate(BUF_ARG MAP_GLOBAL, there);
+                break;
+            }
+            if (!isSpecular(m)) {
+                break;
+            }
+            BsdfSample next = sampleBsdf(m, wo, hit.normal, rng);
+            if (next.lobe == LOBE_NONE) {
+                break;
+            }
+            weight *= next.weight;
+            ray = makeRay(offsetRayOrigin(hit.position, hit.normal, next.direction), next.direction, FLOAT_MAX);
+        }
+    }
+    return sum / float(max(rays, 1u));
+}
+
+// Blue → cyan → green → yellow → red for t ∈ [0, 1].
+PH_FN vec3 heatColor(float t) {
+    float x = clamp(t, 0.0f, 1.0f) * 4.0f;
+    return clamp(vec3(x - 2.0f, x < 2.0f ? x : 4.0f - x, 2.0f - x), vec3(0.0f), vec3(1.0f));
+}
+
+// This frame's radiance through the pixel.
+PH_FN vec3 gatherPixel(BUF_PARAM uint pixel) {
+    HitPoint hp = BUF(hitPoints)[pixel];
+    uint view = BUF(params).view;
+    bool showDirect = view == VIEW_FINAL || view == VIEW_DIRECT;
+    vec3 radiance = showDirect ? hp.direct : vec3(0.0f);
+    if (hp.material == NONE || view == VIEW_DIRECT) {
+        return radiance;
+    }
+    Shading s = makeShading(hp.position, octDecode(hp.normal), octDecode(hp.outgoing),
+                            diffusePart(BUF(materials)[hp.material]));
+    if (view == VIEW_GRID) {
+        float n = float(cellOccupancy(BUF_ARG MAP_GLOBAL, hp.position));
+        return heatColor(n / (n + 32.0f) * 1.5f);
+    }
+    vec3 photons = vec3(0.0f);
+    if (view == VIEW_FINAL || view == VIEW_CAUSTIC) {
+        photons += photonEstimate(BUF_ARG MAP_CAUSTIC, s);
+    }
+    if (view == VIEW_FINAL || view == VIEW_GLOBAL) {
+        if (BUF(params).globalMode == GLOBAL_FINAL_GATHER) {
+            Rng rng = rngCreate(pixel, BUF(params).frameIndex, BUF(params).seed, STREAM_GATHER);
+            photons += finalGather(BUF_ARG s, rng);
+        } else {
+            photons += photonEstimate(BUF_ARG MAP_GLOBAL, s);
+        }
+    }
+    return radiance + hp.weight * photons;
+}
+
+PH_NAMESPACE_END
+
+#endif

@@ -1,0 +1,161 @@
+// Buffer layouts: the one definition of every struct that crosses from host to device.
+// Written so that C++ (GLM, tightly packed vec3) and GLSL std430 (vec3 aligned to 16) agree:
+// each vec3 is followed by a 4-byte scalar, each struct is a multiple of 16 bytes, and every
+// offset is asserted below. Uniform blocks use std140, which equals std430 for these structs.
+#ifndef PHOTON_SHARED_LAYOUT_H
+#define PHOTON_SHARED_LAYOUT_H
+
+#include "constants.h"
+#ifdef __cplusplus
+#include <cstddef>
+#define PH_OFFSET(T, member, offset) static_assert(offsetof(T, member) == offset, #T "::" #member " offset")
+#define PH_SIZE(T, size) static_assert(sizeof(T) == size, "sizeof(" #T ")")
+#else
+#define PH_OFFSET(T, member, offset)
+#define PH_SIZE(T, size)
+#endif
+
+PH_NAMESPACE_BEGIN
+
+// ---- Scene ------------------------------------------------------------------------------------
+
+struct Sphere {
+    vec3 center; float radius;
+    uint material; uint pad0; uint pad1; uint pad2;
+};
+
+// The plane dot(normal, x) = offset.
+struct Plane {
+    vec3 normal; float offset;
+    uint material; uint pad0; uint pad1; uint pad2;
+};
+
+// The parallelogram corner + a·edgeU + b·edgeV, a, b ∈ [0, 1].
+struct Quad {
+    vec3 corner; uint material;
+    vec3 edgeU; float area;
+    vec3 edgeV; float pad0;
+    vec3 w; float pad1;  // cross(edgeU, edgeV) / |cross(edgeU, edgeV)|²: gives (a, b) of a point
+};
+
+struct Triangle {
+    vec3 v0; uint material;
+    vec3 edge1; float pad0;  // v1 - v0
+    vec3 edge2; float pad1;  // v2 - v0
+};
+
+struct Material {
+    vec3 albedo; uint type;        // diffuse reflectance ρ (diffuse, glossy)
+    vec3 specular; float roughness; // mirror reflectance, glass tint, glossy lobe colour; GGX α
+    vec3 emission; float ior;      // emitted radiance (area-light surfaces); index of refraction (glass)
+};
+
+struct Light {
+    vec3 position; uint type;      // point and spot: position; sphere: centre; quad: corner
+    vec3 power; float radius;      // emitted flux Φ per channel [W]; sphere radius
+    vec3 axis; float spotOuter;    // spot and hemisphere axis, quad normal (unit); spot: 1 - cos of the
+                                   // cone's half-angle (kept as 1 - cos: exact for narrow beams)
+    vec3 edgeU; float spotInner;   // quad edge u; spot: 1 - cos of the angle where the falloff starts
+    vec3 edgeV; float area;        // quad edge v; emitting area (sphere, quad)
+    float pickCdf; float pickProbability; uint profile; float falloffMean;
+    // pickCdf: Σ pickProbability of this and earlier lights; profile: EMIT_*;
+    // falloffMean: mean of the spot falloff over its cone, normalises the intensity
+};
+
+// A bounding sphere of a specular object: the caustic pass emits photons towards these.
+struct CausticTarget {
+    vec3 center; float radius;
+};
+
+// ---- Per-frame parameters -------------------------------------------------------------------
+
+struct Camera {
+    vec3 position; float lensRadius;   // thin lens: 0 is a pinhole
+    vec3 forward; float focusDistance;
+    vec3 right; float tanHalfFovY;
+    vec3 up; float aspect;             // width / height
+};
+
+struct SceneInfo {
+    uint sphereCount; uint planeCount; uint quadCount; uint triangleCount;
+    uint materialCount; uint lightCount; uint targetCount; uint pad0;
+    vec3 boundsMin; float pad1;        // bounds of everything finite in the scene
+    vec3 boundsMax; float pad2;
+    vec3 background; float pad3;       // radiance of rays that leave the scene
+};
+
+struct GridParams {
+    vec3 origin; float cellSize;       // bounded: lower corner; both: cell edge length
+    uint resolution; uint kind; uint cellCount; uint cellOffset;
+    // resolution: bounded grid cells per axis (k); kind: GRID_*; cellCount: k³ or the table size
+    // (a power of two); cellOffset: where this map's cells start in cellCounts/cellStart
+    uint photonOffset; uint photonCapacity; float radius; float pad0;
+    // photonOffset/Capacity: this map's slice of the photon arrays; radius: query radius
+};
+
+struct FrameParams {
+    Camera camera;
+    SceneInfo scene;
+    GridParams grids[2];                // MAP_GLOBAL, MAP_CAUSTIC
+    uint width; uint height; uint frameIndex; uint seed;
+    uint globalPaths; uint causticPaths; uint maxPhotonDepth; uint maxEyeDepth;
+    // globalPaths/causticPaths: photons emitted this frame by the global and the caustic pass
+    uint estimator; uint kernel; uint knnK; uint globalMode;
+    uint gatherRays; uint lightSamples; uint view; uint flags;
+    float exposure; uint accumulated; float pad1; float pad2;
+    // accumulated: frames already averaged into the accumulation buffer (the progressive index i)
+};
+
+// ---- Photon maps ------------------------------------------------------------------------------
+
+struct Photon {
+    vec3 position; uint incoming;  // octahedral-encoded unit direction towards where it came from
+    vec3 power; uint flags;        // flux [W]; bounce count of the path when stored
+};
+
+// ---- Eye pass ---------------------------------------------------------------------------------
+
+// Where a pixel's eye path ended on a non-specular surface, and what it already knows.
+struct HitPoint {
+    vec3 position; uint material;  // material NONE: the path ended elsewhere, `direct` is all
+    vec3 weight; uint normal;      // path throughput from the camera; octahedral normal facing ωo
+    vec3 direct; uint outgoing;    // weighted emission, background and direct light; octahedral ωo
+};
+
+PH_NAMESPACE_END
+
+#ifdef __cplusplus
+namespace photon {
+PH_SIZE(Sphere, 32); PH_OFFSET(Sphere, radius, 12); PH_OFFSET(Sphere, material, 16);
+PH_SIZE(Plane, 32); PH_OFFSET(Plane, offset, 12); PH_OFFSET(Plane, material, 16);
+PH_SIZE(Quad, 64); PH_OFFSET(Quad, material, 12); PH_OFFSET(Quad, edgeU, 16); PH_OFFSET(Quad, area, 28);
+PH_OFFSET(Quad, edgeV, 32); PH_OFFSET(Quad, w, 48);
+PH_SIZE(Triangle, 48); PH_OFFSET(Triangle, material, 12); PH_OFFSET(Triangle, edge1, 16);
+PH_OFFSET(Triangle, edge2, 32);
+PH_SIZE(Material, 48); PH_OFFSET(Material, type, 12); PH_OFFSET(Material, specular, 16);
+PH_OFFSET(Material, roughness, 28); PH_OFFSET(Material, emission, 32); PH_OFFSET(Material, ior, 44);
+PH_SIZE(Light, 96); PH_OFFSET(Light, type, 12); PH_OFFSET(Light, power, 16); PH_OFFSET(Light, radius, 28);
+PH_OFFSET(Light, axis, 32); PH_OFFSET(Light, spotOuter, 44); PH_OFFSET(Light, edgeU, 48);
+PH_OFFSET(Light, spotInner, 60); PH_OFFSET(Light, edgeV, 64); PH_OFFSET(Light, area, 76);
+PH_OFFSET(Light, pickCdf, 80); PH_OFFSET(Light, pickProbability, 84); PH_OFFSET(Light, profile, 88);
+PH_OFFSET(Light, falloffMean, 92);
+PH_SIZE(CausticTarget, 16); PH_OFFSET(CausticTarget, radius, 12);
+PH_SIZE(Camera, 64); PH_OFFSET(Camera, lensRadius, 12); PH_OFFSET(Camera, forward, 16);
+PH_OFFSET(Camera, focusDistance, 28); PH_OFFSET(Camera, right, 32); PH_OFFSET(Camera, tanHalfFovY, 44);
+PH_OFFSET(Camera, up, 48); PH_OFFSET(Camera, aspect, 60);
+PH_SIZE(SceneInfo, 80); PH_OFFSET(SceneInfo, materialCount, 16); PH_OFFSET(SceneInfo, boundsMin, 32);
+PH_OFFSET(SceneInfo, boundsMax, 48); PH_OFFSET(SceneInfo, background, 64);
+PH_SIZE(GridParams, 48); PH_OFFSET(GridParams, cellSize, 12); PH_OFFSET(GridParams, resolution, 16);
+PH_OFFSET(GridParams, cellOffset, 28); PH_OFFSET(GridParams, photonOffset, 32);
+PH_OFFSET(GridParams, radius, 40);
+PH_SIZE(FrameParams, 64 + 80 + 2 * 48 + 5 * 16); PH_OFFSET(FrameParams, scene, 64);
+PH_OFFSET(FrameParams, grids, 144); PH_OFFSET(FrameParams, width, 240);
+PH_OFFSET(FrameParams, globalPaths, 256); PH_OFFSET(FrameParams, estimator, 272);
+PH_OFFSET(FrameParams, gatherRays, 288); PH_OFFSET(FrameParams, exposure, 304);
+PH_SIZE(Photon, 32); PH_OFFSET(Photon, incoming, 12); PH_OFFSET(Photon, power, 16); PH_OFFSET(Photon, flags, 28);
+PH_SIZE(HitPoint, 48); PH_OFFSET(HitPoint, material, 12); PH_OFFSET(HitPoint, weight, 16);
+PH_OFFSET(HitPoint, normal, 28); PH_OFFSET(HitPoint, direct, 32); PH_OFFSET(HitPoint, outgoing, 44);
+}  // namespace photon
+#endif
+
+#endif

@@ -1,0 +1,272 @@
+// Lights: photon emission (the global pass samples each light's own distribution; the caustic pass
+// aims at specular objects, after Jensen's projection maps) and direct-light sampling for the eye
+// pass. Emitted power and sampled radiance come from the same intensity functions, so direct light
+// and photon estimates always agree on how bright a light is.
+#ifndef PHOTON_SHARED_LIGHTS_H
+#define PHOTON_SHARED_LIGHTS_H
+
+#include "intersect.h"
+#include "rng.h"
+#include "sampling.h"
+
+PH_NAMESPACE_BEGIN
+
+struct PhotonEmission {
+    vec3 origin;
+    vec3 direction;
+    vec3 power;  // flux carried, before dividing by the number of paths and the light's pick probability
+};
+
+// Direct-light sample: radiance arriving from `direction`, divided by the solid-angle density.
+struct LightSample {
+    vec3 direction;
+    float distance;
+    vec3 radiance;
+};
+
+// A cone of directions: axis and 1 - cos of its half-angle (2: the whole sphere).
+struct Cone {
+    vec3 axis;
+    float x;
+};
+
+PH_FN uint pickLight(BUF_PARAM float u, PH_OUT(float) probability) {
+    uint last = BUF(params).scene.lightCount - 1u;
+    for (uint i = 0u; i < last; ++i) {
+        if (u < BUF(lights)[i].pickCdf) {
+            probability = BUF(lights)[i].pickProbability;
+            return i;
+        }
+    }
+    probability = BUF(lights)[last].pickProbability;
+    return last;
+}
+
+// Smooth spot falloff over x = 1 - cosθ: 1 inside spotInner, 0 beyond spotOuter.
+PH_FN float spotFalloff(PH_IN(Light) light, float x) {
+    if (x >= light.spotOuter) {
+        return 0.0f;
+    }
+    if (x <= light.spotInner) {
+        return 1.0f;
+    }
+    float s = (light.spotOuter - x) / (light.spotOuter - light.spotInner);
+    return s * s * (3.0f - 2.0f * s);
+}
+
+// Radiant intensity [W/sr] of a point or spot light in the unit direction dir.
+PH_FN vec3 pointIntensity(PH_IN(Light) light, vec3 dir) {
+    if (light.type == LIGHT_SPOT) {
+        float falloff = spotFalloff(light, oneMinusCos(dir, light.axis));
+        return light.power * (falloff / (TWO_PI * light.spotOuter * light.falloffMean));
+    }
+    if (light.profile == EMIT_HEMISPHERE) {
+        return light.power * (max(0.0f, dot(dir, light.axis)) * INV_PI);
+    }
+    return light.power * INV_FOUR_PI;
+}
+
+// Radiance leaving an area light's surface (Lambertian emitter).
+PH_FN vec3 areaLightRadiance(PH_IN(Light) light) { return light.power * (INV_PI / light.area); }
+
+// A point on an area light, uniform by area, and the outward normal there.
+PH_FN void sampleAreaLight(PH_IN(Light) light, float u1, float u2, PH_OUT(vec3) p, PH_OUT(vec3) n) {
+    if (light.type == LIGHT_SPHERE) {
+        n = sampleUniformSphere(u1, u2);
+        p = light.position + light.radius * n;
+    } else {
+        n = light.axis;
+        p = light.position + u1 * light.edgeU + u2 * light.edgeV;
+    }
+}
+
+PH_FN bool isAreaLight(PH_IN(Light) light) { return light.type == LIGHT_SPHERE || light.type == LIGHT_QUAD; }
+
+// Photon of the global pass, drawn from the light's own emission distribution. Four draws.
+PH_FN PhotonEmission emitPhoton(PH_IN(Light) light, PH_INOUT(Rng) rng) {
+    float u1 = rngNext(rng);
+    float u2 = rngNext(rng);
+    float u3 = rngNext(rng);
+    float u4 = rngNext(rng);
+    PhotonEmission e;
+    e.origin = light.position;
+    e.power = light.power;
+    if (light.type == LIGHT_POINT) {
+        if (light.profile == EMIT_HEMISPHERE) {
+            e.direction = localToWorld(sampleCosineHemisphere(u1, u2), light.axis);
+        } else {
+            e.direction = sampleUniformSphere(u1, u2);
+        }
+    } else if (light.type == LIGHT_SPOT) {
+        float x = u1 * light.spotOuter;
+        e.direction = directionAroundAxis(light.axis, x, u2);
+        e.power = light.power * (spotFalloff(light, x) / light.falloffMean);
+    } else {
+        vec3 n;
+        vec3 p;
+        sampleAreaLight(light, u3, u4, p, n);
+        e.direction = localToWorld(sampleCosineHemisphere(u1, u2), n);
+        e.origin = offsetRayOrigin(p, n, n);
+    }
+    return e;
+}
+
+// 1 - cos(α + β) from xa = 1 - cos α and xb = 1 - cos β, for α + β ≤ π.
+PH_FN float oneMinusCosSum(float xa, float xb) {
+    float sa = sqrt(max(0.0f, xa * (2.0f - xa)));
+    float sb = sqrt(max(0.0f, xb * (2.0f - xb)));
+    return xa + xb - xa * xb + sa * sb;
+}
+
+// The cone the light emits into from a point on it (normal n for area lights). False: everywhere.
+PH_FN bool emitterCone(PH_IN(Light) light, vec3 n, PH_OUT(Cone) cone) {
+    cone.axis = n;
+    cone.x = 1.0f;
+    if (light.type == LIGHT_SPOT) {
+        cone.axis = light.axis;
+        cone.x = light.spotOuter;
+        return true;
+    }
+    if (light.type == LIGHT_POINT) {
+        cone.axis = light.axis;
+        return light.profile == EMIT_HEMISPHERE;
+    }
+    return true;
+}
+
+// The cone from `origin` that holds caustic target t, clipped to the emitter's cone: weight 0
+// when the light sends nothing there, the emitter's own cone when it lies inside the target's.
+// The weight is proportional to the cone's solid angle.
+PH_FN Cone causticCone(vec3 origin, PH_IN(CausticTarget) t, bool clipped, PH_IN(Cone) emitter,
+                       PH_OUT(float) weight) {
+    Cone c;
+    c.x = sphereConeX(origin, t.center, t.radius);
+    c.axis = c.x >= 2.0f ? vec3(0.0f, 0.0f, 1.0f) : unitVector(t.center - origin);
+    weight = c.x;
+    if (!clipped) {
+        return c;
+    }
+    if (c.x >= 2.0f) {
+        weight = emitter.x;
+        return emitter;
+    }
+    float between = oneMinusCos(c.axis, emitter.axis);
+    if (emitter.x + c.x <= 2.0f && between >= oneMinusCosSum(emitter.x, c.x)) {
+        weight = 0.0f;  // disjoint
+    } else if (between + emitter.x <= 2.0f && oneMinusCosSum(between, emitter.x) <= c.x) {
+        weight = emitter.x;  // the emitter's cone lies inside the target's
+        return emitter;
+    }
+    return c;
+}
+
+// Photon of the caustic pass: its direction is drawn from the mixture of cones towards the
+// specular objects, and its power is intensity / mixture density, which keeps it unbiased.
+// Five draws.
+PH_FN PhotonEmission emitCausticPhoton(BUF_PARAM PH_IN(Light) light, PH_INOUT(Rng) rng) {
+    float u1 = rngNext(rng);
+    float u2 = rngNext(rng);
+    float u3 = rngNext(rng);
+    float u4 = rngNext(rng);
+    float u5 = rngNext(rng);
+    PhotonEmission e;
+    vec3 n = light.axis;
+    e.origin = light.position;
+    e.direction = n;
+    e.power = vec3(0.0f);
+    if (isAreaLight(light)) {
+        vec3 p;
+        sampleAreaLight(light, u1, u2, p, n);
+        e.origin = offsetRayOrigin(p, n, n);
+    }
+    Cone emitter;
+    bool clipped = emitterCone(light, n, emitter);
+    uint count = BUF(params).scene.targetCount;
+    float total = 0.0f;
+    for (uint k = 0u; k < count; ++k) {
+        float w;
+        causticCone(e.origin, BUF(targets)[k], clipped, emitter, w);
+        total += w;
+    }
+    if (!(total > 0.0f)) {
+        return e;
+    }
+    float pick = u3 * total;
+    uint chosen = count - 1u;
+    Cone cone;
+    cone.axis = n;
+    cone.x = 2.0f;
+    for (uint k = 0u; k < count; ++k) {
+        float w;
+        Cone c = causticCone(e.origin, BUF(targets)[k], clipped, emitter, w);
+        if (w > 0.0f) {
+            cone = c;
+            chosen = k;
+            if (pick < w) {
+                break;
+            }
+            pick -= w;
+        }
+    }
+    e.direction = sampleUniformCone(cone.axis, cone.x, u4, u5);
+    float pdf = 0.0f;
+    for (uint k = 0u; k < count; ++k) {
+        float w;
+        Cone c = causticCone(e.origin, BUF(targets)[k], clipped, emitter, w);
+        if (w > 0.0f && (k == chosen || oneMinusCos(e.direction, c.axis) <= c.x)) {
+            pdf += (w / total) * uniformConePdf(c.x);
+        }
+    }
+    vec3 intensity;
+    if (isAreaLight(light)) {
+        intensity = light.power * (max(0.0f, dot(e.direction, n)) * INV_PI);
+    } else {
+        intensity = pointIntensity(light, e.direction);
+    }
+    e.power = intensity / pdf;
+    return e;
+}
+
+// Direct-light sample towards `light` from x. Two draws.
+PH_FN LightSample sampleDirectLight(PH_IN(Light) light, vec3 x, PH_INOUT(Rng) rng) {
+    float u1 = rngNext(rng);
+    float u2 = rngNext(rng);
+    LightSample ls;
+    ls.radiance = vec3(0.0f);
+    ls.direction = vec3(0.0f, 0.0f, 1.0f);
+    ls.distance = 0.0f;
+    if (light.type == LIGHT_POINT || light.type == LIGHT_SPOT) {
+        vec3 d = light.position - x;
+        float dist2 = dot(d, d);
+        ls.distance = sqrt(dist2);
+        ls.direction = d * (1.0f / ls.distance);
+        ls.radiance = pointIntensity(light, -ls.direction) / dist2;
+    } else if (light.type == LIGHT_SPHERE) {
+        // Uniform over the cone that the sphere subtends: density 1 / (2π x).
+        float coneX = sphereConeX(x, light.position, light.radius);
+        if (coneX >= 2.0f) {
+            return ls;
+        }
+        vec3 axis = unitVector(light.position - x);
+        ls.direction = sampleUniformCone(axis, coneX, u1, u2);
+        float t = intersectSphere(makeRay(x, ls.direction, FLOAT_MAX), light.position, light.radius, FLOAT_MAX);
+        ls.distance = t < FLOAT_MAX ? t : dot(light.position - x, ls.direction);
+        ls.radiance = areaLightRadiance(light) * (TWO_PI * coneX);
+    } else {
+        // Uniform by area: density d² / (cosθ_light · area) in solid angle.
+        vec3 p = light.position + u1 * light.edgeU + u2 * light.edgeV;
+        vec3 d = p - x;
+        float dist2 = dot(d, d);
+        ls.distance = sqrt(dist2);
+        ls.direction = d * (1.0f / ls.distance);
+        float cosLight = -dot(ls.direction, light.axis);
+        if (cosLight > 0.0f) {
+            ls.radiance = areaLightRadiance(light) * (cosLight * light.area / dist2);
+        }
+    }
+    return ls;
+}
+
+PH_NAMESPACE_END
+
+#endif

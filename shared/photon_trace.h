@@ -1,0 +1,126 @@
+// The photon pass (Jensen 1996): a photon leaves a light, and at every surface it is either stored
+// (non-specular surfaces), reflected or refracted, or absorbed by Russian roulette with its power
+// rescaled so that the expected flux is unchanged. Each backend runs
+//
+//     PhotonPath path = startPhotonPath(index);
+//     while (path alive) { Photon p; uint store = photonBounce(path, p); append p to the maps in `store`; }
+//
+// and decides only where the appended photons go in memory.
+//
+// What goes where:
+//   caustic map: L S+ D paths (light, one or more mirror/glass bounces, then a diffuse surface).
+//   global map:  GLOBAL_DIRECT mode: paths with at least one diffuse bounce before this one,
+//                because the eye pass computes direct light with shadow rays and caustics from the
+//                caustic map; GLOBAL_FINAL_GATHER mode: every diffuse hit, since gather rays need
+//                the whole radiance at their hit points.
+// Photons with index < globalPaths belong to the global pass; the rest to the caustic pass, which
+// aims at the caustic targets (bounding spheres of finite mirror and glass objects). When the
+// caustic pass runs (FLAG_SPLIT_CAUSTICS) the two passes divide the caustic paths between them by
+// their first surface: the caustic pass owns the paths that first hit a target and drops any
+// other, the global pass stores the rest (first hit on a mirror plane, a mirror coat, ...).
+#ifndef PHOTON_SHARED_PHOTON_TRACE_H
+#define PHOTON_SHARED_PHOTON_TRACE_H
+
+#include "bsdf.h"
+#include "lights.h"
+
+PH_NAMESPACE_BEGIN
+
+struct PhotonPath {
+    vec3 origin;
+    uint flags;  // PATH_*
+    vec3 direction;
+    uint depth;  // surfaces hit so far
+    vec3 power;
+    Rng rng;
+};
+
+PH_FN bool photonPathAlive(PH_IN(PhotonPath) path) { return (path.flags & PATH_ALIVE) != 0u; }
+
+PH_FN PhotonPath startPhotonPath(BUF_PARAM uint index) {
+    PhotonPath path;
+    path.rng = rngCreate(index, BUF(params).frameIndex, BUF(params).seed, STREAM_PHOTON);
+    bool causticPass = index >= BUF(params).globalPaths;
+    float pickProbability;
+    uint lightIndex = pickLight(BUF_ARG rngNext(path.rng), pickProbability);
+    Light light = BUF(lights)[lightIndex];
+    PhotonEmission e;
+    if (causticPass) {
+        e = emitCausticPhoton(BUF_ARG light, path.rng);
+    } else {
+        e = emitPhoton(light, path.rng);
+    }
+    float paths = float(causticPass ? BUF(params).causticPaths : BUF(params).globalPaths);
+    path.origin = e.origin;
+    path.direction = e.direction;
+    path.power = e.power / (paths * pickProbability);
+    path.depth = 0u;
+    path.flags = PATH_ALIVE | PATH_SPECULAR_ONLY | (causticPass ? PATH_CAUSTIC_PASS : 0u);
+    if (isBlack(path.power)) {
+        path.flags = 0u;
+    }
+    return path;
+}
+
+// Follow the photon to its next surface. Fills `photon` and returns STORE_* bits saying which
+// maps it belongs to (0: none), then moves the path on or ends it.
+PH_FN uint photonBounce(BUF_PARAM PH_INOUT(PhotonPath) path, PH_OUT(Photon) photon) {
+    Hit hit;
+    if (!traceClosest(BUF_ARG makeRay(path.origin, path.direction, FLOAT_MAX), hit)) {
+        path.flags = 0u;
+        return 0u;
+    }
+    Material m = BUF(materials)[hit.material];
+    bool causticPass = (path.flags & PATH_CAUSTIC_PASS) != 0u;
+    if (path.depth == 0u && isSpecular(m) && hit.kind != PRIM_PLANE) {
+        path.flags |= PATH_FROM_TARGET;
+    }
+    if (causticPass && (path.flags & PATH_FROM_TARGET) == 0u) {
+        path.flags = 0u;  // aimed at a target but something else was in the way: the global pass's
+        return 0u;
+    }
+    uint store = 0u;
+    if (isDiffuseLike(m)) {
+        bool causticPath = (path.flags & PATH_SPECULAR_ONLY) != 0u && path.depth > 0u;
+        if (causticPass) {
+            store = causticPath ? STORE_CAUSTIC : 0u;
+        } else {
+            bool ownedByCausticPass = (BUF(params).flags & FLAG_SPLIT_CAUSTICS) != 0u &&
+                                      (path.flags & PATH_FROM_TARGET) != 0u;
+            if (causticPath && !ownedByCausticPass) {
+                store |= STORE_CAUSTIC;
+            }
+            if (BUF(params).globalMode == GLOBAL_FINAL_GATHER || (!causticPath && path.depth > 0u)) {
+                store |= STORE_GLOBAL;
+            }
+        }
+        photon.position = hit.position;
+        photon.incoming = octEncode(-path.direction);
+        photon.power = path.power;
+        photon.flags = path.depth;
+    }
+    if (path.depth + 1u >= BUF(params).maxPhotonDepth) {
+        path.flags = 0u;
+        return store;
+    }
+    BsdfSample bs = sampleBsdf(m, -path.direction, hit.normal, path.rng);
+    float survival = min(1.0f, maxComponent(bs.weight));
+    // The caustic pass ends where its path stops being specular.
+    bool leavesCausticPass = causticPass && bs.lobe != LOBE_SPECULAR;
+    if (bs.lobe == LOBE_NONE || leavesCausticPass || !(survival > 0.0f) || rngNext(path.rng) >= survival) {
+        path.flags = 0u;
+        return store;
+    }
+    path.power *= bs.weight / survival;
+    if (bs.lobe != LOBE_SPECULAR) {
+        path.flags &= ~PATH_SPECULAR_ONLY;
+    }
+    path.origin = offsetRayOrigin(hit.position, hit.normal, bs.direction);
+    path.direction = bs.direction;
+    path.depth += 1u;
+    return store;
+}
+
+PH_NAMESPACE_END
+
+#endif

@@ -1,0 +1,64 @@
+// The dialect every file in shared/ is written in: a strict subset that glslang (GLSL 4.60),
+// g++ (C++17 with GLM) and nvcc (CUDA with GLM) all compile to the same arithmetic.
+//
+// Rules for shared/ (each one broke something somewhere):
+//  - Float literals carry an `f`, unsigned ones a `u`. `2.0` is double in C++.
+//  - One random draw per statement: GLSL evaluates arguments left to right, g++ right to left.
+//  - Parameters are PH_IN (read-only; a const reference in C++), PH_INOUT or PH_OUT.
+//    Never assign to a PH_IN parameter.
+//  - No recursion, no pointers, no references, no bool/vec2/vec3-array/mat3 members in buffer
+//    structs, no `#pragma once` (glslang 12 chokes): include guards only.
+//  - Hash and count in `uint`: signed overflow wraps in GLSL and is undefined in C++.
+//  - No transcendental functions (sin, cos, exp, pow, log) on any path that decides where a photon
+//    or a ray goes: they differ between libm, lavapipe and CUDA, and the backends must agree bit for
+//    bit. math.h has a polynomial sinCos2Pi for that. sqrt and division are correctly rounded
+//    everywhere we run; FMA contraction is off in the builds that are compared (g++ -ffp-contract=off,
+//    nvcc --fmad=false for parity).
+//  - Names reserved in GLSL stay unused: sample, input, output, filter, buffer, shared, half,
+//    active, common, partition, and anything with a double underscore.
+//  - Buffers are reached through BUF(name): a global buffer in GLSL, a member of the Bindings
+//    struct in C++ that every such function receives first (BUF_PARAM / BUF_ARG).
+#ifndef PHOTON_SHARED_PORTABLE_H
+#define PHOTON_SHARED_PORTABLE_H
+
+#ifndef __cplusplus
+// ---- GLSL ------------------------------------------------------------------------------------
+#define PH_FN
+#define PH_IN(T) in T
+#define PH_INOUT(T) inout T
+#define PH_OUT(T) out T
+#define PH_CONST const
+#define PH_NAMESPACE_BEGIN
+#define PH_NAMESPACE_END
+#define PH_STATIC_ASSERT(cond, msg)
+#define PH_NOT(b) not(b)
+#define BUF_PARAM
+#define BUF_ARG
+#define BUF(name) name
+
+#else
+// ---- C++ and CUDA ----------------------------------------------------------------------------
+#include <cstdint>
+#include <glm/glm.hpp>
+#ifdef __CUDACC__
+#define PH_FN __host__ __device__ inline
+#else
+#define PH_FN inline
+#endif
+#define PH_IN(T) const T&
+#define PH_INOUT(T) T&
+#define PH_OUT(T) T&
+#define PH_CONST constexpr
+#define PH_NAMESPACE_BEGIN \
+    namespace photon {     \
+    using namespace glm;   \
+    using uint = std::uint32_t;
+#define PH_NAMESPACE_END }
+#define PH_STATIC_ASSERT(cond, msg) static_assert(cond, msg)
+#define PH_NOT(b) glm::not_(b)
+#define BUF_PARAM const Bindings &bindings,
+#define BUF_ARG bindings,
+#define BUF(name) bindings.name
+#endif
+
+#endif
