@@ -1,0 +1,118 @@
+// The one interface every program talks to. A backend (cpu/, cuda/, vulkan/) only allocates
+// buffers and schedules the stages; what a frame computes is decided here and in shared/.
+//
+// A frame runs five stages, named alike in every backend:
+//   tracePhotons  emit photons from the lights and follow them, appending to the two maps
+//   buildGrid     sort each map's photons by grid cell (count, exclusive scan, scatter)
+//   tracePixels   eye paths through mirrors and glass to hit points, with direct light
+//   gather        photon density estimates (and final gather) at the hit points
+//   accumulate    fold the frame into the running mean
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "frame_setup.h"
+#include "image.h"
+#include "scene.h"
+#include "settings.h"
+#include "shared/layout.h"
+
+namespace photon {
+
+// Milliseconds of each stage of one frame (device time on GPUs).
+struct StageTimes {
+    double tracePhotons = 0.0;
+    double buildGrid = 0.0;
+    double tracePixels = 0.0;
+    double gather = 0.0;
+    double accumulate = 0.0;
+    double total() const { return tracePhotons + buildGrid + tracePixels + gather + accumulate; }
+};
+
+struct FrameStats {
+    StageTimes ms;
+    std::uint32_t emitted[MAP_COUNT] = {};   // paths of the global and the caustic pass
+    std::uint32_t stored[MAP_COUNT] = {};    // photons that reached each map
+    std::uint32_t capacity[MAP_COUNT] = {};  // room in each map; photons beyond it were dropped
+};
+
+// A readback of both photon maps: each map's photons in cell order, and its cell ranges
+// (cellStart has cells + 1 entries and indexes that map's photons).
+struct PhotonMaps {
+    std::vector<Photon> photons[MAP_COUNT];
+    std::vector<std::uint32_t> cellStart[MAP_COUNT];
+};
+
+struct GridStats {
+    std::uint32_t cells = 0;
+    std::uint32_t occupied = 0;
+    std::uint32_t maxPerCell = 0;
+    double meanPerOccupied = 0.0;
+};
+
+GridStats gridStats(const std::vector<std::uint32_t>& cellStart);
+
+struct BackendOptions {
+    std::string device;       // Vulkan: index or part of the name; CUDA: index
+    bool validation = false;  // Vulkan: enable the validation layer; any message is an error
+};
+
+class Backend {
+public:
+    virtual ~Backend() = default;
+
+    virtual std::string name() const = 0;        // "cpu", "cuda", "vulkan"
+    virtual std::string deviceName() const = 0;  // the processor or GPU it runs on
+
+    // Changing any of these restarts accumulation; uploads and allocations happen in prepare().
+    void setScene(const Scene& scene);
+    void setSettings(const RenderSettings& settings);
+    void setCamera(const CameraDesc& camera);
+    void resetAccumulation();
+
+    // Uploads the scene and allocates for the settings if anything changed. Checks device limits
+    // (memory, binding sizes) first and throws InputError if the request cannot fit.
+    void prepare();
+    void renderFrame();
+
+    // The mean of the frames rendered since the last reset (linear radiance).
+    Image image();
+    std::uint32_t accumulatedFrames() const { return accumulated_; }
+    const FrameStats& lastFrameStats() const { return stats_; }
+    const Scene& scene() const { return scene_; }
+    const RenderSettings& settings() const { return settings_; }
+    const CameraDesc& camera() const { return camera_; }
+    const PhotonBudget& budget() const { return budget_; }
+    const FrameParams& lastFrameParams() const { return params_; }
+
+    // Stage outputs of the last frame, for tests and tools.
+    virtual PhotonMaps readPhotonMaps() = 0;
+    virtual std::vector<HitPoint> readHitPoints() = 0;
+    virtual Image readFrame() = 0;
+
+protected:
+    virtual void uploadScene(const Scene& scene) = 0;
+    virtual void allocate(const PhotonBudget& budget, std::uint32_t width, std::uint32_t height) = 0;
+    virtual FrameStats runFrame(const FrameParams& params) = 0;
+    virtual Image readAccumulation() = 0;
+
+private:
+    Scene scene_;
+    RenderSettings settings_;
+    CameraDesc camera_;
+    PhotonBudget budget_;
+    FrameParams params_{};
+    FrameStats stats_;
+    std::uint32_t frameIndex_ = 0;   // frames since the scene or settings were set: seeds the RNG
+    std::uint32_t accumulated_ = 0;  // frames in the running mean
+    bool sceneDirty_ = true;
+    bool allocationDirty_ = true;
+    std::uint32_t allocatedWidth_ = 0;
+    std::uint32_t allocatedHeight_ = 0;
+    PhotonBudget allocatedBudget_;
+};
+
+}  // namespace photon

@@ -1,0 +1,20 @@
+// The two kinds of failure the programs report: bad input from the user (exit code 2) and a
+// runtime failure such as a backend that is not available (exit code 1).
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace photon {
+
+// A malformed scene, an impossible setting, a file that cannot be read: the user can fix it.
+struct InputError : std::runtime_error {
+    explicit InputError(const std::string& what) : std::runtime_error(what) {}
+};
+
+// Something failed while running: no such backend or device, out of device memory, a failed call.
+struct RuntimeError : std::runtime_error {
+    explicit RuntimeError(const std::string& what) : std::runtime_error(what) {}
+};
+
+}  // namespace photon

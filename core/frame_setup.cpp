@@ -1,0 +1,124 @@
+#include "frame_setup.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "shared/progressive.h"
+
+namespace photon {
+namespace {
+
+std::uint32_t nextPowerOfTwo(std::uint64_t n) {
+    std::uint64_t p = 1;
+    while (p < n) {
+        p <<= 1;
+    }
+    return static_cast<std::uint32_t>(std::min<std::uint64_t>(p, 1u << 30));
+}
+
+bool anySpecular(const Scene& scene) {
+    return std::any_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) {
+        return m.type == MATERIAL_MIRROR || m.type == MATERIAL_GLASS;
+    });
+}
+
+}  // namespace
+
+PhotonBudget planPhotons(const Scene& scene, const RenderSettings& settings) {
+    PhotonBudget b;
+    b.splitCaustics = scene.hasSpecular() && scene.targets.size() <= CAUSTIC_TARGETS_MAX &&
+                      settings.causticFraction > 0.0f;
+    if (b.splitCaustics) {
+        b.causticPaths = static_cast<std::uint32_t>(std::lround(double(settings.photons) * settings.causticFraction));
+        b.causticPaths = std::min(b.causticPaths, settings.photons - 1u);
+    }
+    b.globalPaths = settings.photons - b.causticPaths;
+    // A global path stores at most one photon per bounce; Russian roulette makes the mean small.
+    // A caustic path stores at most one photon: at its first non-specular surface.
+    double perPath = std::min<double>(settings.photonCapacity, settings.maxPhotonDepth);
+    b.capacity[MAP_GLOBAL] = static_cast<std::uint32_t>(std::ceil(double(b.globalPaths) * perPath));
+    if (b.splitCaustics) {
+        b.capacity[MAP_CAUSTIC] = b.causticPaths;
+    } else {
+        b.capacity[MAP_CAUSTIC] = anySpecular(scene) ? b.globalPaths : 0u;
+    }
+    for (std::uint32_t map = 0; map < MAP_COUNT; ++map) {
+        if (settings.grid == GridKind::Bounded) {
+            std::uint64_t k = settings.gridResolution;
+            b.cells[map] = static_cast<std::uint32_t>(k * k * k);
+        } else {
+            b.cells[map] = nextPowerOfTwo(std::max<std::uint64_t>(b.capacity[map], 1024));
+        }
+    }
+    return b;
+}
+
+float baseRadius(const Scene& scene, const RenderSettings& settings, std::uint32_t map) {
+    float global = settings.radius > 0.0f ? settings.radius : 0.01f * scene.diagonal();
+    if (map == MAP_GLOBAL) {
+        return global;
+    }
+    return settings.causticRadius > 0.0f ? settings.causticRadius : 0.5f * global;
+}
+
+FrameParams makeFrameParams(const Scene& scene, const CameraDesc& camera, const RenderSettings& settings,
+                            const PhotonBudget& budget, std::uint32_t frameIndex, std::uint32_t accumulated) {
+    FrameParams p{};
+    p.camera = makeCamera(camera, settings.width, settings.height);
+
+    SceneInfo& info = p.scene;
+    info.sphereCount = static_cast<std::uint32_t>(scene.spheres.size());
+    info.planeCount = static_cast<std::uint32_t>(scene.planes.size());
+    info.quadCount = static_cast<std::uint32_t>(scene.quads.size());
+    info.triangleCount = static_cast<std::uint32_t>(scene.triangles.size());
+    info.materialCount = static_cast<std::uint32_t>(scene.materials.size());
+    info.lightCount = static_cast<std::uint32_t>(scene.lights.size());
+    info.targetCount = budget.splitCaustics ? static_cast<std::uint32_t>(scene.targets.size()) : 0u;
+    info.boundsMin = scene.boundsMin;
+    info.boundsMax = scene.boundsMax;
+    info.background = scene.background;
+
+    bool progressive = settings.estimator == Estimator::Progressive;
+    glm::vec3 extent = scene.boundsMax - scene.boundsMin;
+    float cube = std::max({extent.x, extent.y, extent.z});
+    for (std::uint32_t map = 0; map < MAP_COUNT; ++map) {
+        GridParams& g = p.grids[map];
+        float r = baseRadius(scene, settings, map);
+        g.radius = progressive ? progressiveRadius(r, settings.alpha, accumulated) : r;
+        g.kind = settings.grid == GridKind::Bounded ? GRID_BOUNDED : GRID_HASHED;
+        g.origin = scene.boundsMin;
+        if (settings.grid == GridKind::Bounded) {
+            g.resolution = settings.gridResolution;
+            g.cellSize = cube / float(settings.gridResolution);
+        } else {
+            g.resolution = 0;
+            g.cellSize = 2.0f * g.radius;
+        }
+        g.cellCount = budget.cells[map];
+        g.cellOffset = budget.cellOffset(map);
+        g.photonOffset = budget.photonOffset(map);
+        g.photonCapacity = budget.capacity[map];
+    }
+
+    p.width = settings.width;
+    p.height = settings.height;
+    p.frameIndex = frameIndex;
+    p.seed = settings.seed;
+    p.globalPaths = budget.globalPaths;
+    p.causticPaths = budget.causticPaths;
+    p.maxPhotonDepth = settings.maxPhotonDepth;
+    p.maxEyeDepth = settings.maxEyeDepth;
+    p.estimator = static_cast<std::uint32_t>(settings.estimator);
+    p.kernel = static_cast<std::uint32_t>(settings.kernel);
+    p.knnK = settings.k;
+    p.globalMode = static_cast<std::uint32_t>(settings.globalMode);
+    p.gatherRays = settings.gatherRays;
+    p.lightSamples = settings.lightSamples;
+    p.view = static_cast<std::uint32_t>(settings.view);
+    p.flags = (settings.pixelCenter ? FLAG_PIXEL_CENTER : 0u) | (budget.splitCaustics ? FLAG_SPLIT_CAUSTICS : 0u);
+    p.exposure = settings.exposure;
+    p.accumulated = accumulated;
+    return p;
+}
+
+}  // namespace photon

@@ -1,0 +1,39 @@
+// Turning a scene and settings into what the backends run: how many photons each pass emits,
+// how much room the photon maps get, and each frame's FrameParams. Every backend receives the
+// same FrameParams from here, so they differ only in how they schedule the work.
+#pragma once
+
+#include <cstdint>
+
+#include "scene.h"
+#include "settings.h"
+#include "shared/layout.h"
+
+namespace photon {
+
+struct PhotonBudget {
+    std::uint32_t globalPaths = 0;            // photons emitted by the global pass per frame
+    std::uint32_t causticPaths = 0;           // photons aimed at specular objects per frame
+    std::uint32_t capacity[MAP_COUNT] = {};   // stored photons each map has room for
+    std::uint32_t cells[MAP_COUNT] = {};      // cells of each map's grid (hashed: a power of two)
+    bool splitCaustics = false;               // caustic paths come from the caustic pass only
+
+    std::uint32_t photonOffset(std::uint32_t map) const { return map == MAP_GLOBAL ? 0u : capacity[MAP_GLOBAL]; }
+    std::uint32_t cellOffset(std::uint32_t map) const { return map == MAP_GLOBAL ? 0u : cells[MAP_GLOBAL] + 1u; }
+    std::uint32_t totalPaths() const { return globalPaths + causticPaths; }
+    std::uint32_t totalCapacity() const { return capacity[MAP_GLOBAL] + capacity[MAP_CAUSTIC]; }
+    // cellStart entries of both maps: each map's cells plus one end entry.
+    std::uint32_t totalCellEntries() const { return cells[MAP_GLOBAL] + cells[MAP_CAUSTIC] + 2u; }
+};
+
+PhotonBudget planPhotons(const Scene& scene, const RenderSettings& settings);
+
+// The query radius of a map in the first frame (settings or a default from the scene's size).
+float baseRadius(const Scene& scene, const RenderSettings& settings, std::uint32_t map);
+
+// Parameters of one frame. frameIndex numbers frames since the renderer started (it seeds the
+// random numbers); accumulated counts the frames already averaged (the progressive index).
+FrameParams makeFrameParams(const Scene& scene, const CameraDesc& camera, const RenderSettings& settings,
+                            const PhotonBudget& budget, std::uint32_t frameIndex, std::uint32_t accumulated);
+
+}  // namespace photon

@@ -1,0 +1,211 @@
+#include "image.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include <stb_image_write.h>
+#include <tinyexr.h>
+
+#include "error.h"
+#include "shared/tonemap.h"
+
+namespace photon {
+namespace {
+
+std::string lowerExtension(const std::string& path) {
+    auto dot = path.find_last_of('.');
+    if (dot == std::string::npos) {
+        return "";
+    }
+    std::string ext = path.substr(dot + 1);
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+}
+
+void writePng(const std::string& path, const Image& image, float exposure, Tonemap curve) {
+    std::vector<unsigned char> bytes(std::size_t(image.width) * image.height * 3);
+    float scale = std::exp2(exposure);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+        glm::vec3 c = tonemap(glm::vec3(image.pixels[i]), scale, static_cast<std::uint32_t>(curve));
+        for (int k = 0; k < 3; ++k) {
+            bytes[3 * i + k] = static_cast<unsigned char>(std::lround(c[k] * 255.0f));
+        }
+    }
+    int stride = int(image.width) * 3;
+    if (!stbi_write_png(path.c_str(), int(image.width), int(image.height), 3, bytes.data(), stride)) {
+        throw RuntimeError(path + ": cannot write PNG");
+    }
+}
+
+void writeExr(const std::string& path, const Image& image) {
+    std::vector<float> rgb(std::size_t(image.width) * image.height * 3);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+        for (int k = 0; k < 3; ++k) {
+            rgb[3 * i + k] = image.pixels[i][k];
+        }
+    }
+    const char* err = nullptr;
+    if (SaveEXR(rgb.data(), int(image.width), int(image.height), 3, 0, path.c_str(), &err) != TINYEXR_SUCCESS) {
+        std::string reason = err ? err : "unknown error";
+        FreeEXRErrorMessage(err);
+        throw RuntimeError(path + ": cannot write EXR: " + reason);
+    }
+}
+
+// Portable float map: "PF", size, scale (negative: little-endian), rows bottom to top.
+void writePfm(const std::string& path, const Image& image) {
+    std::ofstream out(path, std::ios::binary);
+    if (!out) {
+        throw RuntimeError(path + ": cannot open for writing");
+    }
+    out << "PF\n" << image.width << " " << image.height << "\n-1.0\n";
+    std::vector<float> row(std::size_t(image.width) * 3);
+    for (std::uint32_t y = image.height; y-- > 0;) {
+        for (std::uint32_t x = 0; x < image.width; ++x) {
+            for (int k = 0; k < 3; ++k) {
+                row[3 * x + k] = image.at(x, y)[k];
+            }
+        }
+        out.write(reinterpret_cast<const char*>(row.data()), std::streamsize(row.size() * sizeof(float)));
+    }
+    if (!out) {
+        throw RuntimeError(path + ": write failed");
+    }
+}
+
+Image readPfm(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        throw InputError(path + ": cannot open file");
+    }
+    std::string magic;
+    long w = 0;
+    long h = 0;
+    float scale = 0.0f;
+    in >> magic >> w >> h >> scale;
+    in.get();
+    if (magic != "PF" || w <= 0 || h <= 0 || w > 65536 || h > 65536 || scale >= 0.0f) {
+        throw InputError(path + ": not a little-endian RGB PFM file");
+    }
+    Image image{std::uint32_t(w), std::uint32_t(h)};
+    std::vector<float> row(std::size_t(w) * 3);
+    for (long y = h; y-- > 0;) {
+        in.read(reinterpret_cast<char*>(row.data()), std::streamsize(row.size() * sizeof(float)));
+        for (long x = 0; x < w; ++x) {
+            image.at(std::uint32_t(x), std::uint32_t(y)) = glm::vec4(row[3 * x], row[3 * x + 1], row[3 * x + 2], 1.0f);
+        }
+    }
+    if (!in) {
+        throw InputError(path + ": truncated PFM file");
+    }
+    return image;
+}
+
+Image readExr(const std::string& path) {
+    float* rgba = nullptr;
+    int w = 0;
+    int h = 0;
+    const char* err = nullptr;
+    if (LoadEXR(&rgba, &w, &h, path.c_str(), &err) != TINYEXR_SUCCESS) {
+        std::string reason = err ? err : "unknown error";
+        FreeEXRErrorMessage(err);
+        throw InputError(path + ": cannot read EXR: " + reason);
+    }
+    Image image{std::uint32_t(w), std::uint32_t(h)};
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+        image.pixels[i] = glm::vec4(rgba[4 * i], rgba[4 * i + 1], rgba[4 * i + 2], 1.0f);
+    }
+    std::free(rgba);
+    return image;
+}
+
+}  // namespace
+
+ImageFormat imageFormatFor(const std::string& path) {
+    std::string ext = lowerExtension(path);
+    if (ext == "png") {
+        return ImageFormat::Png;
+    }
+    if (ext == "exr") {
+        return ImageFormat::Exr;
+    }
+    if (ext == "pfm") {
+        return ImageFormat::Pfm;
+    }
+    throw InputError(path + ": unknown image format (use .png, .exr or .pfm)");
+}
+
+void writeImage(const std::string& path, const Image& image, float exposure, Tonemap curve) {
+    switch (imageFormatFor(path)) {
+        case ImageFormat::Png:
+            writePng(path, image, exposure, curve);
+            break;
+        case ImageFormat::Exr:
+            writeExr(path, image);
+            break;
+        case ImageFormat::Pfm:
+            writePfm(path, image);
+            break;
+    }
+}
+
+Image readImage(const std::string& path) {
+    switch (imageFormatFor(path)) {
+        case ImageFormat::Exr:
+            return readExr(path);
+        case ImageFormat::Pfm:
+            return readPfm(path);
+        default:
+            throw InputError(path + ": only .exr and .pfm images can be read");
+    }
+}
+
+double relativeRmse(const Image& a, const Image& reference) {
+    if (a.width != reference.width || a.height != reference.height) {
+        return INFINITY;
+    }
+    double num = 0.0;
+    double den = 0.0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+        for (int k = 0; k < 3; ++k) {
+            double d = double(a.pixels[i][k]) - double(reference.pixels[i][k]);
+            num += d * d;
+            den += double(reference.pixels[i][k]) * double(reference.pixels[i][k]);
+        }
+    }
+    return den > 0.0 ? std::sqrt(num / den) : std::sqrt(num);
+}
+
+double meanLuminance(const Image& image) {
+    double sum = 0.0;
+    for (const glm::vec4& p : image.pixels) {
+        sum += 0.2126 * p.x + 0.7152 * p.y + 0.0722 * p.z;
+    }
+    return image.pixels.empty() ? 0.0 : sum / double(image.pixels.size());
+}
+
+bool allFinite(const Image& image) {
+    return std::all_of(image.pixels.begin(), image.pixels.end(), [](const glm::vec4& p) {
+        return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+    });
+}
+
+Image differenceImage(const Image& a, const Image& b) {
+    Image d(a.width, a.height);
+    float largest = 0.0f;
+    for (std::size_t i = 0; i < d.pixels.size() && i < b.pixels.size(); ++i) {
+        d.pixels[i] = glm::abs(a.pixels[i] - b.pixels[i]);
+        largest = std::max({largest, d.pixels[i].x, d.pixels[i].y, d.pixels[i].z});
+    }
+    for (glm::vec4& p : d.pixels) {
+        p = largest > 0.0f ? p / largest : p;
+        p.w = 1.0f;
+    }
+    return d;
+}
+
+}  // namespace photon

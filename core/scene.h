@@ -1,0 +1,74 @@
+// A scene on the host: the shared buffer structs in vectors, plus the camera and render settings.
+// Built by the JSON loader or directly by code (tests), then finalize()d before rendering.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "settings.h"
+#include "shared/layout.h"
+
+namespace photon {
+
+struct CameraDesc {
+    glm::vec3 position{0.0f, 0.0f, 5.0f};
+    glm::vec3 lookAt{0.0f, 0.0f, 0.0f};
+    glm::vec3 up{0.0f, 1.0f, 0.0f};
+    float fovY = 40.0f;          // vertical field of view, degrees
+    float lensRadius = 0.0f;     // thin lens; 0 is a pinhole
+    float focusDistance = 0.0f;  // 0: the distance to lookAt
+};
+
+Material makeDiffuse(glm::vec3 albedo);
+Material makeMirror(glm::vec3 reflectance);
+Material makeGlass(float ior, glm::vec3 tint);
+Material makeGlossy(glm::vec3 albedo, glm::vec3 specular, float roughness);  // roughness = GGX α
+Material makeReflective(glm::vec3 albedo, glm::vec3 reflectance);  // Lambertian under a mirror coat
+Material makeEmitter(glm::vec3 radiance);
+
+struct Scene {
+    std::string name;
+    std::vector<Sphere> spheres;
+    std::vector<Plane> planes;
+    std::vector<Quad> quads;
+    std::vector<Triangle> triangles;
+    std::vector<Material> materials;
+    std::vector<std::string> materialNames;
+    std::vector<Light> lights;
+    std::vector<CausticTarget> targets;  // by finalize(): bounding spheres of mirror and glass objects
+    CameraDesc camera;
+    glm::vec3 background{0.0f};
+    glm::vec3 boundsMin{0.0f};  // by finalize()
+    glm::vec3 boundsMax{0.0f};
+    RenderSettings render;
+
+    std::uint32_t addMaterial(const std::string& materialName, const Material& m);
+    // Index of a material by name, or NONE.
+    std::uint32_t findMaterial(const std::string& materialName) const;
+
+    void addSphere(glm::vec3 center, float radius, std::uint32_t material);
+    void addPlane(glm::vec3 point, glm::vec3 normal, std::uint32_t material);
+    void addQuad(glm::vec3 corner, glm::vec3 edgeU, glm::vec3 edgeV, std::uint32_t material);
+    void addTriangle(glm::vec3 a, glm::vec3 b, glm::vec3 c, std::uint32_t material);
+
+    // Lights; power is the emitted flux in watts per channel. Area lights also add their visible
+    // surface, with an emitter material of radiance Φ / (π · area).
+    void addPointLight(glm::vec3 position, glm::vec3 power);
+    void addHemisphereLight(glm::vec3 position, glm::vec3 axis, glm::vec3 power);
+    void addSpotLight(glm::vec3 position, glm::vec3 direction, glm::vec3 power, float outerDegrees,
+                      float innerDegrees);
+    void addSphereLight(glm::vec3 center, float radius, glm::vec3 power);
+    void addQuadLight(glm::vec3 corner, glm::vec3 edgeU, glm::vec3 edgeV, glm::vec3 power);
+
+    // Light pick probabilities, caustic targets and bounds. Call after the last add*().
+    void finalize();
+
+    float diagonal() const;
+    bool hasSpecular() const { return !targets.empty(); }
+};
+
+// The shared camera for an image of width × height.
+Camera makeCamera(const CameraDesc& desc, std::uint32_t width, std::uint32_t height);
+
+}  // namespace photon

@@ -1,0 +1,67 @@
+// Render settings: everything a user can choose about how a scene is rendered. Read from a scene
+// file's "render" block, then overridden from the command line.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace photon {
+
+enum class Estimator : std::uint32_t { Cell = 0, Radius = 1, Knn = 2, Progressive = 3 };
+enum class Kernel : std::uint32_t { Box = 0, Cone = 1, Epanechnikov = 2 };
+enum class GridKind : std::uint32_t { Bounded = 0, Hashed = 1 };
+enum class GlobalMode : std::uint32_t { Direct = 0, FinalGather = 1 };
+enum class View : std::uint32_t { Final = 0, Direct = 1, Global = 2, Caustic = 3, Grid = 4 };
+enum class Tonemap : std::uint32_t { Clamp = 0, Reinhard = 1, Aces = 2 };
+
+struct RenderSettings {
+    std::uint32_t width = 640;
+    std::uint32_t height = 480;
+    std::uint32_t photons = 200000;       // photon paths emitted per frame, both passes together
+    std::uint32_t frames = 1;             // frames averaged into the image
+    float causticFraction = 0.5f;         // share of the photons aimed at specular objects (if any)
+    Estimator estimator = Estimator::Radius;
+    Kernel kernel = Kernel::Epanechnikov;
+    float radius = 0.0f;                  // global map query radius; 0: 1% of the scene's diagonal
+    float causticRadius = 0.0f;           // caustic map query radius; 0: half the global radius
+    std::uint32_t k = 50;                 // photons of the k-nearest estimator
+    float alpha = 2.0f / 3.0f;            // progressive radius reduction (Knaus & Zwicker)
+    GlobalMode globalMode = GlobalMode::Direct;
+    std::uint32_t gatherRays = 16;        // final-gather rays per hit point
+    std::uint32_t lightSamples = 1;       // shadow rays per light per hit point
+    std::uint32_t maxEyeDepth = 8;        // specular bounces an eye path may take
+    std::uint32_t maxPhotonDepth = 8;     // surfaces a photon may hit
+    GridKind grid = GridKind::Hashed;
+    std::uint32_t gridResolution = 64;    // k of the bounded k³ grid
+    float photonCapacity = 4.0f;          // stored photons reserved per global path (GPU backends)
+    std::uint32_t seed = 1;
+    bool pixelCenter = false;             // one ray through each pixel centre, no lens
+    View view = View::Final;
+    float exposure = 0.0f;                // stops
+    Tonemap tonemap = Tonemap::Aces;
+};
+
+const char* toString(Estimator e);
+const char* toString(Kernel k);
+const char* toString(GridKind g);
+const char* toString(GlobalMode m);
+const char* toString(View v);
+const char* toString(Tonemap t);
+
+// Parse the names above; false if the name is not one of them.
+bool parse(const std::string& s, Estimator& out);
+bool parse(const std::string& s, Kernel& out);
+bool parse(const std::string& s, GridKind& out);
+bool parse(const std::string& s, GlobalMode& out);
+bool parse(const std::string& s, View& out);
+bool parse(const std::string& s, Tonemap& out);
+
+// The accepted names, "a|b|c", for messages and --help.
+std::string choices(Estimator);
+std::string choices(Kernel);
+std::string choices(GridKind);
+std::string choices(GlobalMode);
+std::string choices(View);
+std::string choices(Tonemap);
+
+}  // namespace photon
