@@ -1,0 +1,20 @@
+// Choosing a backend by name. "auto" takes CUDA if a CUDA device exists, else Vulkan if a Vulkan
+// device exists, else the CPU.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/backend.h"
+
+namespace photon {
+
+// Throws InputError for an unknown name and RuntimeError for a backend that is not available
+// (not compiled in, or no device).
+std::unique_ptr<Backend> createBackend(const std::string& kind, const BackendOptions& options = {});
+
+// The backends compiled into this build.
+std::vector<std::string> compiledBackends();
+
+}  // namespace photon

@@ -1,0 +1,17 @@
+// parallelFor over a pool of worker threads started once. Work is split into fixed chunks that
+// threads claim in turn; results that depend on order are kept per chunk by the caller, so the
+// outcome never depends on which thread ran what.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+
+namespace photon {
+
+// Calls body(begin, end) for consecutive chunks of [0, count) of at most `grain` items, on all
+// hardware threads including the caller's. Returns when every chunk is done.
+void parallelFor(std::size_t count, std::size_t grain, const std::function<void(std::size_t, std::size_t)>& body);
+
+unsigned workerThreads();
+
+}  // namespace photon
