@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# photon-render from the outside: exit codes (0 ok, 2 bad input, 1 runtime failure), one-line
+# messages that name the file and place, and every output format.
+#   tests/cli_test.sh <photon-render> <scenes dir>
+set -uo pipefail
+render=$1
+scenes=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+failures=0
+small=(--backend cpu --width 32 --height 24 --photons 5000)
+
+# expect <code> <stderr substring or ""> <args...>
+expect() {
+  local code=$1 message=$2
+  shift 2
+  "$render" "$@" >"$tmp/out" 2>"$tmp/err"
+  local got=$?
+  if [ "$got" -ne "$code" ]; then
+    echo "FAIL: photon-render $* exited $got, expected $code"; cat "$tmp/err"; failures=$((failures + 1))
+  elif [ -n "$message" ] && ! grep -qF -- "$message" "$tmp/err"; then
+    echo "FAIL: photon-render $*: stderr lacks '$message'"; cat "$tmp/err"; failures=$((failures + 1))
+  else
+    echo "ok: exit $got: photon-render $*"
+  fi
+}
+
+# Success, every format, the default scene and a file.
+expect 0 "" "${small[@]}" -o "$tmp/a.png"
+expect 0 "" "${small[@]}" -o "$tmp/a.exr"
+expect 0 "" "${small[@]}" -o "$tmp/a.pfm" --stats "$tmp/stats.json" --frames 2 --estimator progressive
+expect 0 "" "$scenes/cornell.json" "${small[@]}" -o "$tmp/b.png" --pixel-center --estimator knn --k 16
+for f in a.png a.exr a.pfm b.png stats.json; do
+  [ -s "$tmp/$f" ] || { echo "FAIL: $f was not written"; failures=$((failures + 1)); }
+done
+python3 -c "import json,sys; j=json.load(open(sys.argv[1])); assert j['frames']==2 and 'gather' in j['stages'] and j['photons']['global']['stored']>0" "$tmp/stats.json" \
+  || { echo "FAIL: stats JSON"; failures=$((failures + 1)); }
+
+# Bad input: exit 2 with the file, the place and the reason.
+printf '{ "camera": { "position": [0, 0, 1], }' > "$tmp/broken.json"
+expect 2 "broken.json: line 1" "$tmp/broken.json" "${small[@]}" -o "$tmp/x.png"
+sed 's/"radius": 0.38, "material": "mirror"/"radius": -1, "material": "mirror"/' "$scenes/cornell.json" > "$tmp/negative.json"
+expect 2 "negative.json: /objects/5/radius" "$tmp/negative.json" "${small[@]}" -o "$tmp/x.png"
+sed 's/"type": "mirror", "reflectance"/"type": "metal", "reflectance"/' "$scenes/cornell.json" > "$tmp/metal.json"
+expect 2 "metal.json: /materials/mirror/type" "$tmp/metal.json" "${small[@]}" -o "$tmp/x.png"
+expect 2 "missing.json: cannot open file" "$tmp/missing.json" "${small[@]}"
+expect 2 "" "${small[@]}" --width 0
+expect 2 "" "${small[@]}" --photons -5
+expect 2 "--estimator: unknown value 'nearest'" "${small[@]}" --estimator nearest
+expect 2 "unknown image format" "${small[@]}" -o "$tmp/x.bmp"
+expect 2 "" "${small[@]}" --no-such-option
+expect 2 "opencl not in" --backend opencl
+
+# Runtime failure: a backend this machine cannot run.
+if ! command -v nvidia-smi >/dev/null 2>&1; then
+  expect 1 "CUDA" --backend cuda --width 8 --height 8 -o "$tmp/x.png"
+fi
+
+[ "$failures" -eq 0 ] && echo "all CLI checks passed"
+exit "$failures"

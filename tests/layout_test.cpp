@@ -1,0 +1,95 @@
+// The std430/std140 layouts GLSL gives the shared structs, read back from the compiled shader by
+// spirv-cross --reflect, equal the C++ layouts member by member. (The static_asserts in
+// shared/layout.h pin the C++ side; this pins the GLSL side to it.)
+#include <gtest/gtest.h>
+
+#include <cstddef>
+#include <fstream>
+#include <map>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "shared/bindings.h"
+
+namespace photon {
+namespace {
+
+struct Member {
+    const char* type;
+    const char* name;
+    std::size_t offset;
+};
+
+#define PH_MEMBER(T, m) Member{#T, #m, offsetof(T, m)}
+
+const Member kMembers[] = {
+    PH_MEMBER(Sphere, center), PH_MEMBER(Sphere, radius), PH_MEMBER(Sphere, material),
+    PH_MEMBER(Plane, normal), PH_MEMBER(Plane, offset), PH_MEMBER(Plane, material),
+    PH_MEMBER(Quad, corner), PH_MEMBER(Quad, material), PH_MEMBER(Quad, edgeU), PH_MEMBER(Quad, area),
+    PH_MEMBER(Quad, edgeV), PH_MEMBER(Quad, w),
+    PH_MEMBER(Triangle, v0), PH_MEMBER(Triangle, material), PH_MEMBER(Triangle, edge1), PH_MEMBER(Triangle, edge2),
+    PH_MEMBER(Material, albedo), PH_MEMBER(Material, type), PH_MEMBER(Material, specular),
+    PH_MEMBER(Material, roughness), PH_MEMBER(Material, emission), PH_MEMBER(Material, ior),
+    PH_MEMBER(Light, position), PH_MEMBER(Light, type), PH_MEMBER(Light, power), PH_MEMBER(Light, radius),
+    PH_MEMBER(Light, axis), PH_MEMBER(Light, spotOuter), PH_MEMBER(Light, edgeU), PH_MEMBER(Light, spotInner),
+    PH_MEMBER(Light, edgeV), PH_MEMBER(Light, area), PH_MEMBER(Light, pickCdf), PH_MEMBER(Light, pickProbability),
+    PH_MEMBER(Light, profile), PH_MEMBER(Light, falloffMean),
+    PH_MEMBER(CausticTarget, center), PH_MEMBER(CausticTarget, radius),
+    PH_MEMBER(Camera, position), PH_MEMBER(Camera, lensRadius), PH_MEMBER(Camera, forward),
+    PH_MEMBER(Camera, focusDistance), PH_MEMBER(Camera, right), PH_MEMBER(Camera, tanHalfFovY),
+    PH_MEMBER(Camera, up), PH_MEMBER(Camera, aspect),
+    PH_MEMBER(SceneInfo, sphereCount), PH_MEMBER(SceneInfo, triangleCount), PH_MEMBER(SceneInfo, materialCount),
+    PH_MEMBER(SceneInfo, targetCount), PH_MEMBER(SceneInfo, boundsMin), PH_MEMBER(SceneInfo, boundsMax),
+    PH_MEMBER(SceneInfo, background),
+    PH_MEMBER(GridParams, origin), PH_MEMBER(GridParams, cellSize), PH_MEMBER(GridParams, resolution),
+    PH_MEMBER(GridParams, kind), PH_MEMBER(GridParams, cellCount), PH_MEMBER(GridParams, cellOffset),
+    PH_MEMBER(GridParams, photonOffset), PH_MEMBER(GridParams, photonCapacity), PH_MEMBER(GridParams, radius),
+    PH_MEMBER(FrameParams, camera), PH_MEMBER(FrameParams, scene), PH_MEMBER(FrameParams, grids),
+    PH_MEMBER(FrameParams, width), PH_MEMBER(FrameParams, seed), PH_MEMBER(FrameParams, globalPaths),
+    PH_MEMBER(FrameParams, maxEyeDepth), PH_MEMBER(FrameParams, estimator), PH_MEMBER(FrameParams, globalMode),
+    PH_MEMBER(FrameParams, gatherRays), PH_MEMBER(FrameParams, flags), PH_MEMBER(FrameParams, exposure),
+    PH_MEMBER(FrameParams, accumulated),
+    PH_MEMBER(Photon, position), PH_MEMBER(Photon, incoming), PH_MEMBER(Photon, power), PH_MEMBER(Photon, flags),
+    PH_MEMBER(HitPoint, position), PH_MEMBER(HitPoint, material), PH_MEMBER(HitPoint, weight),
+    PH_MEMBER(HitPoint, normal), PH_MEMBER(HitPoint, direct), PH_MEMBER(HitPoint, outgoing),
+};
+
+// Buffer arrays and the C++ size of their element: the GLSL array stride must equal it.
+const std::map<std::string, std::size_t> kStrides = {
+    {"spheres", sizeof(Sphere)},   {"planes", sizeof(Plane)},         {"quads", sizeof(Quad)},
+    {"triangles", sizeof(Triangle)}, {"materials", sizeof(Material)}, {"lights", sizeof(Light)},
+    {"targets", sizeof(CausticTarget)}, {"photons", sizeof(Photon)},  {"sortedPhotons", sizeof(Photon)},
+    {"hitPoints", sizeof(HitPoint)}, {"frameRadiance", 16},           {"accumulation", 16},
+};
+
+TEST(Layout, GlslOffsetsEqualCpp) {
+    std::ifstream in(PHOTON_LAYOUT_REFLECTION);
+    ASSERT_TRUE(in) << "missing " << PHOTON_LAYOUT_REFLECTION;
+    nlohmann::json reflection = nlohmann::json::parse(in);
+    // (struct, member) → offset, for the structs GLSL laid out in buffers.
+    std::map<std::pair<std::string, std::string>, std::size_t> glsl;
+    std::map<std::string, std::size_t> strides;
+    for (const auto& [id, type] : reflection["types"].items()) {
+        for (const auto& m : type["members"]) {
+            if (m.contains("offset")) {
+                glsl[{type["name"], m["name"]}] = m["offset"];
+            }
+            if (m.contains("array_stride")) {
+                strides[m["name"]] = m["array_stride"];
+            }
+        }
+    }
+    for (const Member& m : kMembers) {
+        auto it = glsl.find({m.type, m.name});
+        ASSERT_NE(it, glsl.end()) << m.type << "::" << m.name << " not laid out in any GLSL buffer";
+        EXPECT_EQ(it->second, m.offset) << m.type << "::" << m.name;
+    }
+    for (const auto& [name, size] : kStrides) {
+        ASSERT_TRUE(strides.count(name)) << name;
+        EXPECT_EQ(strides[name], size) << name;
+    }
+}
+
+}  // namespace
+}  // namespace photon

@@ -1,0 +1,207 @@
+// Intersection edge cases, Fresnel, octahedral vectors, grid cells and hashing, kernels.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "shared/bsdf.h"
+#include "shared/estimate.h"
+#include "shared/grid.h"
+#include "shared/intersect.h"
+#include "shared/progressive.h"
+#include "test_util.h"
+
+namespace photon {
+namespace {
+
+Ray ray(vec3 o, vec3 d) { return makeRay(o, glm::normalize(d), FLOAT_MAX); }
+
+TEST(Intersect, SphereFromOutsideInsideAndBehind) {
+    EXPECT_FLOAT_EQ(intersectSphere(ray(vec3(0, 0, -5), vec3(0, 0, 1)), vec3(0), 1.0f, FLOAT_MAX), 4.0f);
+    EXPECT_FLOAT_EQ(intersectSphere(ray(vec3(0), vec3(0, 0, 1)), vec3(0), 1.0f, FLOAT_MAX), 1.0f);  // inside
+    EXPECT_EQ(intersectSphere(ray(vec3(0, 0, 5), vec3(0, 0, 1)), vec3(0), 1.0f, FLOAT_MAX), FLOAT_MAX);  // behind
+    EXPECT_EQ(intersectSphere(ray(vec3(0, 2, -5), vec3(0, 0, 1)), vec3(0), 1.0f, FLOAT_MAX), FLOAT_MAX);  // miss
+    EXPECT_EQ(intersectSphere(ray(vec3(0, 0, -5), vec3(0, 0, 1)), vec3(0), 1.0f, 3.0f), 3.0f);  // beyond tMax
+}
+
+TEST(Intersect, SphereFarAwayIsStillPrecise) {
+    // A unit sphere 10⁴ away: the naive b² - c formula loses every digit of the discriminant.
+    float t = intersectSphere(ray(vec3(0, 0.5f, -1.0e4f), vec3(0, 0, 1)), vec3(0), 1.0f, FLOAT_MAX);
+    EXPECT_NEAR(t, 1.0e4f - std::sqrt(0.75f), 2e-3f);
+}
+
+TEST(Intersect, PlaneParallelAndFacing) {
+    EXPECT_EQ(intersectPlane(ray(vec3(0, 1, 0), vec3(1, 0, 0)), vec3(0, 1, 0), 0.0f, FLOAT_MAX), FLOAT_MAX);
+    EXPECT_FLOAT_EQ(intersectPlane(ray(vec3(0, 1, 0), vec3(0, -1, 0)), vec3(0, 1, 0), 0.0f, FLOAT_MAX), 1.0f);
+    EXPECT_FLOAT_EQ(intersectPlane(ray(vec3(0, -1, 0), vec3(0, 1, 0)), vec3(0, 1, 0), 0.0f, FLOAT_MAX), 1.0f);  // back side
+}
+
+TEST(Intersect, QuadInsideOutsideAndEdges) {
+    Scene s;
+    s.addQuad(vec3(0), vec3(2, 0, 0), vec3(0, 0, 1), 0);
+    const Quad& q = s.quads[0];
+    EXPECT_FLOAT_EQ(intersectQuad(ray(vec3(1, 1, 0.5f), vec3(0, -1, 0)), q, FLOAT_MAX), 1.0f);
+    EXPECT_FLOAT_EQ(intersectQuad(ray(vec3(1, -1, 0.5f), vec3(0, 1, 0)), q, FLOAT_MAX), 1.0f);  // two-sided
+    EXPECT_EQ(intersectQuad(ray(vec3(2.01f, 1, 0.5f), vec3(0, -1, 0)), q, FLOAT_MAX), FLOAT_MAX);
+    EXPECT_EQ(intersectQuad(ray(vec3(1, 1, -0.01f), vec3(0, -1, 0)), q, FLOAT_MAX), FLOAT_MAX);
+    EXPECT_FLOAT_EQ(intersectQuad(ray(vec3(2, 1, 1), vec3(0, -1, 0)), q, FLOAT_MAX), 1.0f);  // corner
+    EXPECT_FLOAT_EQ(s.quads[0].area, 2.0f);
+}
+
+TEST(Intersect, TriangleEdgesAndDegenerate) {
+    Triangle t{};
+    t.v0 = vec3(0);
+    t.edge1 = vec3(1, 0, 0);
+    t.edge2 = vec3(0, 1, 0);
+    EXPECT_FLOAT_EQ(intersectTriangle(ray(vec3(0.25f, 0.25f, 1), vec3(0, 0, -1)), t, FLOAT_MAX), 1.0f);
+    EXPECT_EQ(intersectTriangle(ray(vec3(0.6f, 0.6f, 1), vec3(0, 0, -1)), t, FLOAT_MAX), FLOAT_MAX);
+    EXPECT_EQ(intersectTriangle(ray(vec3(0.25f, 0.25f, 1), vec3(1, 0, 0)), t, FLOAT_MAX), FLOAT_MAX);  // parallel
+    t.edge2 = vec3(2, 0, 0);  // degenerate
+    EXPECT_EQ(intersectTriangle(ray(vec3(0.25f, 0.0f, 1), vec3(0, 0, -1)), t, FLOAT_MAX), FLOAT_MAX);
+}
+
+TEST(Intersect, ClosestHitAcrossPrimitiveKinds) {
+    Scene s;
+    std::uint32_t m = s.addMaterial("white", makeDiffuse(vec3(0.5f)));
+    s.addSphere(vec3(0, 0, -3), 1.0f, m);
+    s.addPlane(vec3(0, 0, -10), vec3(0, 0, 1), m);
+    s.addQuad(vec3(-1, -1, -1.5f), vec3(2, 0, 0), vec3(0, 2, 0), m);
+    s.addPointLight(vec3(0, 5, 0), vec3(1));
+    test::SceneBindings sb(s);
+    Hit hit;
+    ASSERT_TRUE(traceClosest(sb.bindings, ray(vec3(0), vec3(0, 0, -1)), hit));
+    EXPECT_EQ(hit.kind, PRIM_QUAD);
+    EXPECT_FLOAT_EQ(hit.t, 1.5f);
+    ASSERT_TRUE(traceClosest(sb.bindings, ray(vec3(0, 1.5f, 0), vec3(0, 0, -1)), hit));
+    EXPECT_EQ(hit.kind, PRIM_PLANE);
+    EXPECT_FALSE(traceOccluded(sb.bindings, vec3(0), vec3(0, 0, -1), 1.4f));
+    EXPECT_TRUE(traceOccluded(sb.bindings, vec3(0), vec3(0, 0, -1), 1.6f));
+}
+
+TEST(Fresnel, NormalIncidenceGrazingAndTotalInternalReflection) {
+    float n = 1.5f;
+    float r0 = (n - 1) * (n - 1) / ((n + 1) * (n + 1));
+    EXPECT_NEAR(fresnelDielectric(1.0f, n), r0, 1e-6f);
+    EXPECT_NEAR(fresnelDielectric(1.0f, 1.0f / n), r0, 1e-6f);
+    EXPECT_NEAR(fresnelDielectric(1e-4f, n), 1.0f, 1e-3f);
+    // Inside glass beyond the critical angle asin(1/1.5) = 41.8°.
+    EXPECT_EQ(fresnelDielectric(std::cos(0.8f), 1.0f / n), 1.0f);
+    // Brewster's angle: p-polarised reflection vanishes, so F = rs²/2.
+    float cosB = std::cos(std::atan(n));
+    float cosT = std::sqrt(1.0f - (1.0f - cosB * cosB) / (n * n));
+    float rs = (cosB - n * cosT) / (cosB + n * cosT);
+    EXPECT_NEAR(fresnelDielectric(cosB, n), 0.5f * rs * rs, 1e-6f);
+}
+
+TEST(Fresnel, RefractionObeysSnell) {
+    vec3 n(0, 0, 1);
+    vec3 wo = glm::normalize(vec3(1, 0, 1));  // 45°
+    vec3 wt;
+    ASSERT_TRUE(refractThrough(wo, n, 1.5f, wt));
+    EXPECT_NEAR(glm::length(wt), 1.0f, 1e-6f);
+    float sinI = std::sqrt(0.5f);
+    float sinT = std::sqrt(wt.x * wt.x + wt.y * wt.y);
+    EXPECT_NEAR(sinI, 1.5f * sinT, 1e-6f);
+    EXPECT_LT(wt.z, 0.0f);
+    EXPECT_FALSE(refractThrough(glm::normalize(vec3(1, 0, 0.2f)), n, 1.0f / 1.5f, wt));  // TIR
+}
+
+TEST(Octahedral, RoundTripWithinTenMicroradians) {
+    Rng rng = rngCreate(1u, 1u, 1u, 1u);
+    for (int i = 0; i < 100000; ++i) {
+        float u1 = rngNext(rng);
+        float u2 = rngNext(rng);
+        vec3 d = sampleUniformSphere(u1, u2);
+        vec3 e = octDecode(octEncode(d));
+        EXPECT_LT(glm::length(d - e), 1e-4f);  // 1e-4 rad
+    }
+    for (vec3 axis : {vec3(1, 0, 0), vec3(0, -1, 0), vec3(0, 0, 1), vec3(0, 0, -1)}) {
+        EXPECT_LT(glm::length(octDecode(octEncode(axis)) - axis), 1e-6f);
+    }
+}
+
+GridParams hashedGrid(float cellSize) {
+    GridParams g{};
+    g.kind = GRID_HASHED;
+    g.cellSize = cellSize;
+    g.cellCount = 1u << 16;
+    return g;
+}
+
+TEST(Grid, NegativeCoordinatesUseFloor) {
+    GridParams g = hashedGrid(1.0f);
+    EXPECT_EQ(cellOf(vec3(-0.5f, 0.5f, -1.0f), g), ivec3(-1, 0, -1));
+    EXPECT_EQ(cellOf(vec3(-1.5f, -0.0f, 2.5f), g), ivec3(-2, 0, 2));
+    // Cells on either side of zero are distinct, as are their hashes.
+    EXPECT_NE(photonCellKey(vec3(-0.5f, 0, 0), g), photonCellKey(vec3(0.5f, 0, 0), g));
+}
+
+TEST(Grid, BoundedClampsOutsidePointsIntoBorderCells) {
+    GridParams g{};
+    g.kind = GRID_BOUNDED;
+    g.origin = vec3(-1);
+    g.cellSize = 0.5f;
+    g.resolution = 4;
+    g.cellCount = 64;
+    EXPECT_EQ(cellOf(vec3(-5, 0, 7), g), ivec3(0, 2, 3));
+    EXPECT_EQ(cellKey(ivec3(3, 3, 3), g), 63u);
+    EXPECT_EQ(cellKey(ivec3(1, 2, 3), g), (3u * 4 + 2) * 4 + 1);
+}
+
+TEST(Grid, HashSpreadsNeighbouringCells) {
+    // The 32³ cells around the origin should fill a 2^16 table without piling up.
+    GridParams g = hashedGrid(1.0f);
+    std::vector<int> load(g.cellCount, 0);
+    for (int z = -16; z < 16; ++z) {
+        for (int y = -16; y < 16; ++y) {
+            for (int x = -16; x < 16; ++x) {
+                load[cellKey(ivec3(x, y, z), g)] += 1;
+            }
+        }
+    }
+    EXPECT_LE(*std::max_element(load.begin(), load.end()), 8);
+}
+
+TEST(CellQuery, VisitsEachBucketOnceAndCoversTheBall) {
+    GridParams g = hashedGrid(0.2f);  // 2r for r = 0.1
+    g.cellCount = 4;                  // tiny table: buckets must repeat
+    CellQuery q = beginCellQuery(vec3(0.05f, -0.02f, 0.31f), 0.1f, g);
+    std::vector<std::uint32_t> keys;
+    std::uint32_t key;
+    while (nextCell(q, g, key)) {
+        EXPECT_EQ(std::count(keys.begin(), keys.end(), key), 0);
+        keys.push_back(key);
+    }
+    EXPECT_LE(keys.size(), 4u);
+    EXPECT_GE(keys.size(), 1u);
+}
+
+TEST(Kernels, IntegrateToOneOverTheDisc) {
+    for (std::uint32_t k : {KERNEL_BOX, KERNEL_CONE, KERNEL_EPANECHNIKOV}) {
+        // ∫_0^r K(d) 2πd dd · norm / (πr²) with r = 1.
+        double sum = 0.0;
+        int n = 100000;
+        for (int i = 0; i < n; ++i) {
+            double d = (i + 0.5) / n;
+            sum += kernelProfile(k, float(d * d), 1.0f) * 2.0 * d / n;
+        }
+        EXPECT_NEAR(sum * kernelNorm(k), 1.0, 1e-4) << "kernel " << k;
+    }
+}
+
+TEST(Progressive, RadiusFollowsKnausZwicker) {
+    float r0 = 0.1f;
+    float alpha = 2.0f / 3.0f;
+    double r2 = r0 * r0;
+    for (std::uint32_t i = 0; i < 50; ++i) {
+        EXPECT_NEAR(progressiveRadius(r0, alpha, i), std::sqrt(r2), 1e-6);
+        r2 *= (i + alpha) / (i + 1.0);
+    }
+    vec4 mean(0.0f);
+    for (std::uint32_t n = 0; n < 4; ++n) {
+        mean = accumulateMean(mean, vec4(float(n)), n);
+    }
+    EXPECT_FLOAT_EQ(mean.x, 1.5f);
+}
+
+}  // namespace
+}  // namespace photon

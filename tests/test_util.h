@@ -1,0 +1,65 @@
+// Helpers shared by the tests: Bindings over a host scene, χ² testing, image diff files.
+#pragma once
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "core/frame_setup.h"
+#include "core/image.h"
+#include "core/scene.h"
+#include "shared/bindings.h"
+
+namespace photon::test {
+
+// Bindings that point at a host scene, for calling shared/ functions that read buffers.
+struct SceneBindings {
+    Scene scene;
+    Bindings bindings{};
+
+    explicit SceneBindings(Scene s, RenderSettings settings = {}) : scene(std::move(s)) {
+        scene.finalize();
+        PhotonBudget budget = planPhotons(scene, settings);
+        bindings.params = makeFrameParams(scene, scene.camera, settings, budget, 0, 0);
+        bindings.spheres = scene.spheres.data();
+        bindings.planes = scene.planes.data();
+        bindings.quads = scene.quads.data();
+        bindings.triangles = scene.triangles.data();
+        bindings.materials = scene.materials.data();
+        bindings.lights = scene.lights.data();
+        bindings.targets = scene.targets.data();
+    }
+};
+
+// Pearson's χ² statistic of observed counts against expected counts; bins with expected < 5
+// are merged into their neighbour (as Mitsuba and pbrt do).
+inline double chiSquare(const std::vector<double>& observed, const std::vector<double>& expected, int& dof) {
+    double chi2 = 0.0;
+    double pooledObserved = 0.0;
+    double pooledExpected = 0.0;
+    dof = -1;
+    for (std::size_t i = 0; i < observed.size(); ++i) {
+        pooledObserved += observed[i];
+        pooledExpected += expected[i];
+        if (pooledExpected >= 5.0) {
+            chi2 += (pooledObserved - pooledExpected) * (pooledObserved - pooledExpected) / pooledExpected;
+            pooledObserved = 0.0;
+            pooledExpected = 0.0;
+            dof += 1;
+        }
+    }
+    return chi2;
+}
+
+// Upper quantile of the χ² distribution via the Wilson–Hilferty approximation; z = 4.26 is a
+// significance of 1e-5, so a correct sampler fails about once in 100000 runs.
+inline double chiSquareThreshold(int dof, double z = 4.26) {
+    double k = double(dof);
+    double t = 1.0 - 2.0 / (9.0 * k) + z * std::sqrt(2.0 / (9.0 * k));
+    return k * t * t * t;
+}
+
+// Where tests write images that help explain a failure.
+inline std::string testOutputPath(const std::string& name) { return std::string(PHOTON_TEST_OUTPUT_DIR) + "/" + name; }
+
+}  // namespace photon::test
