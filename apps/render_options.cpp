@@ -48,6 +48,8 @@ void addRenderOptions(CLI::App& app, RenderOptions& o) {
         ->check(CLI::Range(0.0f, 0.99f));
     app.add_option("--grid", o.grid, "Photon map grid: " + choices(GridKind{}));
     app.add_option("--grid-resolution", o.gridResolution, "k of the bounded k³ grid")->check(CLI::Range(1u, 1024u));
+    app.add_option("--cell-size", o.cellSize, "Hashed grid cell edge in query radii (≥ 1)")->check(CLI::Range(1.0f, 64.0f));
+    app.add_option("--gather-budget", o.gatherBudget, "Photons a query visits per cell before subsampling it (0: all)");
     app.add_option("--view", o.view, "What to show: " + choices(View{}));
     app.add_option("--exposure", o.exposure, "Exposure in stops (PNG and display)");
     app.add_option("--tonemap", o.tonemap, "Tone curve: " + choices(Tonemap{}));
@@ -76,9 +78,51 @@ void applyRenderOptions(const CLI::App& app, const RenderOptions& o, RenderSetti
     applyValue(app, "--caustic-fraction", o.causticFraction, s.causticFraction);
     applyEnum(app, "--grid", o.grid, s.grid);
     applyValue(app, "--grid-resolution", o.gridResolution, s.gridResolution);
+    applyValue(app, "--cell-size", o.cellSize, s.cellSize);
+    applyValue(app, "--gather-budget", o.gatherBudget, s.gatherBudget);
     applyEnum(app, "--view", o.view, s.view);
     applyValue(app, "--exposure", o.exposure, s.exposure);
     applyEnum(app, "--tonemap", o.tonemap, s.tonemap);
+}
+
+void applySetting(RenderSettings& s, const std::string& key, const std::string& value) {
+    auto number = [&] {
+        try {
+            return std::stod(value);
+        } catch (const std::exception&) {
+            throw InputError(key + "=" + value + ": not a number");
+        }
+    };
+    auto enumeration = [&](auto& out) {
+        if (!parse(value, out)) {
+            throw InputError(key + "=" + value + ": expected " + choices(out));
+        }
+    };
+    if (key == "cell_size") {
+        s.cellSize = float(number());
+    } else if (key == "gather_budget") {
+        s.gatherBudget = std::uint32_t(number());
+    } else if (key == "radius") {
+        s.radius = float(number());
+    } else if (key == "caustic_radius") {
+        s.causticRadius = float(number());
+    } else if (key == "caustic_fraction") {
+        s.causticFraction = float(number());
+    } else if (key == "k") {
+        s.k = std::uint32_t(number());
+    } else if (key == "estimator") {
+        enumeration(s.estimator);
+    } else if (key == "kernel") {
+        enumeration(s.kernel);
+    } else if (key == "grid") {
+        enumeration(s.grid);
+    } else if (key == "global") {
+        enumeration(s.globalMode);
+    } else if (key == "view") {
+        enumeration(s.view);
+    } else {
+        throw InputError("unknown setting '" + key + "'");
+    }
 }
 
 }  // namespace photon

@@ -31,6 +31,8 @@ struct RenderOptions {
     float causticFraction = 0.0f;
     std::string grid;
     std::uint32_t gridResolution = 0;
+    float cellSize = 0.0f;
+    std::uint32_t gatherBudget = 0;
     std::string view;
     float exposure = 0.0f;
     std::string tonemap;
@@ -40,5 +42,9 @@ void addRenderOptions(CLI::App& app, RenderOptions& options);
 
 // Applies the options that were given; throws InputError for a bad enumeration value.
 void applyRenderOptions(const CLI::App& app, const RenderOptions& options, RenderSettings& settings);
+
+// Sets one setting by its scene-file name ("cell_size", "gather_budget", "estimator", ...), for
+// photon-bench's --vary. Throws InputError for an unknown name or value.
+void applySetting(RenderSettings& settings, const std::string& key, const std::string& value);
 
 }  // namespace photon

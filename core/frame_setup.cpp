@@ -92,7 +92,7 @@ FrameParams makeFrameParams(const Scene& scene, const CameraDesc& camera, const 
             g.cellSize = cube / float(settings.gridResolution);
         } else {
             g.resolution = 0;
-            g.cellSize = 2.0f * g.radius;
+            g.cellSize = settings.cellSize * g.radius;
         }
         g.cellCount = budget.cells[map];
         g.cellOffset = budget.cellOffset(map);
@@ -118,6 +118,7 @@ FrameParams makeFrameParams(const Scene& scene, const CameraDesc& camera, const 
     p.flags = (settings.pixelCenter ? FLAG_PIXEL_CENTER : 0u) | (budget.splitCaustics ? FLAG_SPLIT_CAUSTICS : 0u);
     p.exposure = settings.exposure;
     p.accumulated = accumulated;
+    p.gatherBudget = settings.gatherBudget;
     return p;
 }
 

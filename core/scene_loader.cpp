@@ -541,8 +541,8 @@ void readLights(Scene& scene, const Node& node) {
 void readRender(const Node& node, RenderSettings& s) {
     node.allowKeys({"width", "height", "photons", "frames", "caustic_fraction", "estimator", "kernel", "radius",
                     "caustic_radius", "k", "alpha", "global", "gather_rays", "light_samples", "max_eye_depth",
-                    "max_photon_depth", "grid", "grid_resolution", "photon_capacity", "seed", "exposure",
-                    "tonemap"});
+                    "max_photon_depth", "grid", "grid_resolution", "cell_size", "gather_budget", "photon_capacity", "seed",
+                    "exposure", "tonemap"});
     if (node.has("width")) s.width = node["width"].integer(1, 16384);
     if (node.has("height")) s.height = node["height"].integer(1, 16384);
     if (node.has("photons")) s.photons = node["photons"].integer(1, 1u << 28);
@@ -561,6 +561,8 @@ void readRender(const Node& node, RenderSettings& s) {
     if (node.has("max_photon_depth")) s.maxPhotonDepth = node["max_photon_depth"].integer(1, 64);
     if (node.has("grid")) s.grid = node["grid"].setting<GridKind>();
     if (node.has("grid_resolution")) s.gridResolution = node["grid_resolution"].integer(1, 1024);
+    if (node.has("cell_size")) s.cellSize = node["cell_size"].number({1.0, 64.0, false, false});
+    if (node.has("gather_budget")) s.gatherBudget = node["gather_budget"].integer(0, 1u << 30);
     if (node.has("photon_capacity")) s.photonCapacity = node["photon_capacity"].number({1.0, 64.0, false, false});
     if (node.has("seed")) s.seed = node["seed"].integer(0, std::numeric_limits<std::uint32_t>::max());
     if (node.has("exposure")) s.exposure = node["exposure"].number();

@@ -33,6 +33,8 @@ struct RenderSettings {
     std::uint32_t maxPhotonDepth = 8;     // surfaces a photon may hit
     GridKind grid = GridKind::Hashed;
     std::uint32_t gridResolution = 64;    // k of the bounded k³ grid
+    float cellSize = 1.0f;                // hashed grid cell edge in query radii (≥ 1: ≤ 3³ cells a query)
+    std::uint32_t gatherBudget = 256;     // photons a query visits per cell before subsampling it (0: all)
     float photonCapacity = 4.0f;          // stored photons reserved per global path (GPU backends)
     std::uint32_t seed = 1;
     bool pixelCenter = false;             // one ray through each pixel centre, no lens

@@ -76,7 +76,7 @@ PH_FN bool refractThrough(vec3 wo, vec3 n, float eta, PH_OUT(vec3) wt) {
 // GGX normal distribution D(h) for cosθh = n·h and roughness α.
 PH_FN float ggxD(float cosH, float alpha) {
     float a2 = alpha * alpha;
-    float d = cosH * cosH * (a2 - 1.0f) + 1.0f;
+    PH_PRECISE float d = cosH * cosH * (a2 - 1.0f) + 1.0f;  // a lerp: see portable.h
     return a2 / (PI * d * d);
 }
 

@@ -96,7 +96,6 @@ PH_CONST uint STREAM_GATHER = 0x85ebca6bu;
 
 // Fixed capacities.
 PH_CONST uint KNN_MAX = 64u;              // largest k of the k-nearest estimator
-PH_CONST uint QUERY_CELLS_MAX = 8u;       // hashed grids use cells of edge 2r: a ball meets ≤ 2³
 PH_CONST uint CAUSTIC_TARGETS_MAX = 64u;  // specular objects the caustic pass aims at
 PH_CONST uint LIGHTS_MAX = 64u;
 

@@ -1,6 +1,9 @@
 // Radiance estimates from a photon map (Jensen 2001, eq. 7.6):
 //     L(x, ωo) ≈ Σ_p f(x, ωo, ωp) Φp K(|x - xp|) / (π r²)
-// over the photons near x that arrived from ωo's side of the surface. Four ways to pick "near":
+// over the photons near x that arrived from ωo's side of the surface. "Near" is a disc rather than
+// a ball (Jensen 2001, §7.2): within r of x and within DISC_THICKNESS·r of the tangent plane, which
+// keeps photons of a neighbouring wall out of a corner's estimate, still holds curved surfaces whose
+// radius exceeds 2r, and lets a query visit only the cells the disc crosses. Ways to pick "near":
 //   cell:        the photons of x's own grid cell, over the cell's cross-section h² (the seed).
 //   radius:      all photons within r, weighted by a kernel K normalised over the disc.
 //   knn:         the k nearest within a maximum radius; r is the distance to the k-th (Jensen).
@@ -22,14 +25,14 @@ struct Shading {
     Material material;
 };
 
-// Kernel profiles, unnormalised; kernelNorm makes each integrate to 1 over the disc of radius r
-// once divided by πr². Cone: Jensen's filter with k = 1.
-PH_FN float kernelProfile(uint kernel, float d2, float r2) {
+// Kernel profiles of d²/r², unnormalised; kernelNorm makes each integrate to 1 over the disc of
+// radius r once divided by πr². Cone: Jensen's filter with k = 1.
+PH_FN float kernelProfile(uint kernel, float t) {
     if (kernel == KERNEL_CONE) {
-        return 1.0f - sqrt(d2 / r2);
+        return 1.0f - sqrt(t);
     }
     if (kernel == KERNEL_EPANECHNIKOV) {
-        return 1.0f - d2 / r2;
+        return 1.0f - t;
     }
     return 1.0f;
 }
@@ -45,68 +48,61 @@ PH_FN float kernelNorm(uint kernel) {
 }
 
 // f(ωo, ωp) for a photon arriving from ωp, or 0 if it came from behind the surface. Lambertian
-// surfaces return 1 and get albedo/π once, outside the loop (estimateScale).
+// surfaces return 1 and get albedo/π once, outside the loop (estimateScale); they only need the
+// side, so they skip normalising ωp.
 PH_FN vec3 photonReflectance(PH_IN(Shading) s, uint incoming) {
-    vec3 wi = octDecode(incoming);
     if (s.material.type == MATERIAL_DIFFUSE) {
-        return dot(wi, s.normal) > 0.0f ? vec3(1.0f) : vec3(0.0f);
+        return dot(octDecodeUnnormalized(incoming), s.normal) > 0.0f ? vec3(1.0f) : vec3(0.0f);
     }
-    return evalBsdf(s.material, s.wo, wi, s.normal);
+    return evalBsdf(s.material, s.wo, octDecode(incoming), s.normal);
 }
 
 PH_FN vec3 estimateScale(PH_IN(Shading) s) {
     return s.material.type == MATERIAL_DIFFUSE ? s.material.albedo * INV_PI : vec3(1.0f);
 }
 
-// Walks the cells that a ball (x, r) overlaps. Hashed grids have cells of edge 2r, so at most
-// two per axis; their buckets can repeat, and a repeated bucket is skipped.
+PH_CONST float DISC_THICKNESS = 0.25f;  // half-thickness of the estimation disc, in radii
+
+// Half-extents of the bounding box of the disc of radius r about normal n, thickened by t.
+PH_FN vec3 discExtent(vec3 n, float r, float t) {
+    vec3 n2 = n * n;
+    return r * sqrt(max(vec3(1.0f) - n2, vec3(0.0f))) + t * abs(n);
+}
+
+// Walks the cells that a box (x ± extent) overlaps. Hashed grids have cells of edge at least r, so
+// the box of a query of radius r spans at most 3 per axis, and their keys are distinct (grid.h).
 struct CellQuery {
     ivec3 lo;
     ivec3 hi;
     ivec3 cell;
-    uint visitedCount;
-    uint visited[QUERY_CELLS_MAX];
 };
 
-PH_FN CellQuery beginCellQuery(vec3 x, float radius, PH_IN(GridParams) grid) {
+PH_FN CellQuery beginCellQuery(vec3 x, vec3 extent, PH_IN(GridParams) grid) {
     CellQuery q;
-    q.lo = cellOf(x - vec3(radius), grid);
-    q.hi = cellOf(x + vec3(radius), grid);
+    q.lo = cellOf(x - extent, grid);
+    q.hi = cellOf(x + extent, grid);
     if (grid.kind == GRID_HASHED) {
-        q.hi = min(q.hi, q.lo + ivec3(1));
+        q.hi = min(q.hi, q.lo + ivec3(2));  // rounding at a cell boundary must not add a fourth
     }
     q.cell = q.lo;
-    q.visitedCount = 0u;
     return q;
 }
 
 PH_FN bool nextCell(PH_INOUT(CellQuery) q, PH_IN(GridParams) grid, PH_OUT(uint) key) {
-    while (q.cell.z <= q.hi.z) {
-        ivec3 c = q.cell;
-        q.cell.x += 1;
-        if (q.cell.x > q.hi.x) {
-            q.cell.x = q.lo.x;
-            q.cell.y += 1;
-            if (q.cell.y > q.hi.y) {
-                q.cell.y = q.lo.y;
-                q.cell.z += 1;
-            }
-        }
-        key = cellKey(c, grid);
-        if (grid.kind == GRID_BOUNDED) {
-            return true;
-        }
-        bool seen = false;
-        for (uint i = 0u; i < q.visitedCount; ++i) {
-            seen = seen || q.visited[i] == key;
-        }
-        if (!seen) {
-            q.visited[q.visitedCount] = key;
-            q.visitedCount += 1u;
-            return true;
+    if (q.cell.z > q.hi.z) {
+        return false;
+    }
+    key = cellKey(q.cell, grid);
+    q.cell.x += 1;
+    if (q.cell.x > q.hi.x) {
+        q.cell.x = q.lo.x;
+        q.cell.y += 1;
+        if (q.cell.y > q.hi.y) {
+            q.cell.y = q.lo.y;
+            q.cell.z += 1;
         }
     }
-    return false;
+    return true;
 }
 
 // Photons of the map's cell `key`: sortedPhotons[photonOffset + begin .. photonOffset + end).
@@ -115,50 +111,97 @@ PH_FN void cellRange(BUF_PARAM PH_IN(GridParams) grid, uint key, PH_OUT(uint) be
     end = grid.photonOffset + BUF(cellStart)[grid.cellOffset + key + 1u];
 }
 
-PH_FN vec3 estimateRadius(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float radius, uint kernel) {
-    float r2 = radius * radius;
-    vec3 sum = vec3(0.0f);
-    CellQuery q = beginCellQuery(s.position, radius, grid);
-    uint key;
-    while (nextCell(q, grid, key)) {
-        uint begin;
-        uint end;
-        cellRange(BUF_ARG grid, key, begin, end);
-        for (uint i = begin; i < end; ++i) {
-            Photon p = BUF(sortedPhotons)[i];
-            vec3 d = p.position - s.position;
-            float d2 = dot(d, d);
-            if (d2 < r2) {
-                sum += photonReflectance(s, p.incoming) * p.power * kernelProfile(kernel, d2, r2);
-            }
-        }
+// A cell holding more photons than the budget is subsampled: every stride-th photon from a random
+// start, each weighted by stride. Each photon is then visited with probability exactly 1/stride,
+// so the estimate stays unbiased; only cells far denser than a query needs (a caustic's focus)
+// trade a little variance for a bounded cost. `u` is uniform in [0, 1); budget 0 visits all.
+PH_FN uint subsampleStride(uint count, uint budget) {
+    if (budget == 0u || count <= budget) {
+        return 1u;
     }
-    return sum * estimateScale(s) * (kernelNorm(kernel) / (PI * r2));
+    return (count + budget - 1u) / budget;
+}
+
+PH_FN uint subsampleStart(uint begin, uint stride, float u) { return begin + min(uint(u * float(stride)), stride - 1u); }
+
+// One flat loop over (cell, photon) pairs, in which each iteration either tests a photon or moves
+// to the next cell: on SIMD hardware the threads of a warp then drift through their cells
+// independently instead of waiting for each other at every cell boundary (the "if-if" loop of
+// Aila & Laine, "Understanding the Efficiency of Ray Traversal on GPUs", HPG 2009).
+// One photon's share of a radius estimate at s: zero outside the disc. Accumulate the shares,
+// times each cell's subsampling stride, and finish with finishRadiusEstimate.
+PH_FN vec3 radiusContribution(PH_IN(Shading) s, PH_IN(Photon) p, float r2, float thickness, uint kernel) {
+    vec3 d = p.position - s.position;
+    float d2 = dot(d, d);
+    if (d2 < r2 && abs(dot(d, s.normal)) <= thickness) {
+        return photonReflectance(s, p.incoming) * p.power * kernelProfile(kernel, d2 / r2);
+    }
+    return vec3(0.0f);
+}
+
+PH_FN vec3 finishRadiusEstimate(PH_IN(Shading) s, vec3 sum, float radius, uint kernel) {
+    return sum * estimateScale(s) * (kernelNorm(kernel) * INV_PI / (radius * radius));
+}
+
+PH_FN float discThickness(float radius) { return DISC_THICKNESS * radius; }
+
+PH_FN vec3 estimateRadius(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float radius, uint kernel, float u) {
+    float r2 = radius * radius;
+    float thickness = discThickness(radius);
+    uint budget = BUF(params).gatherBudget;
+    vec3 sum = vec3(0.0f);
+    vec3 cellSum = vec3(0.0f);
+    CellQuery q = beginCellQuery(s.position, discExtent(s.normal, radius, thickness), grid);
+    uint i = 0u;
+    uint end = 0u;
+    uint stride = 1u;
+    while (true) {
+        if (i >= end) {
+            sum += cellSum * float(stride);
+            cellSum = vec3(0.0f);
+            uint key;
+            if (!nextCell(q, grid, key)) {
+                break;
+            }
+            uint begin;
+            cellRange(BUF_ARG grid, key, begin, end);
+            stride = subsampleStride(end - begin, budget);
+            i = subsampleStart(begin, stride, u);
+            continue;
+        }
+        cellSum += radiusContribution(s, BUF(sortedPhotons)[i], r2, thickness, kernel);
+        i += stride;
+    }
+    return finishRadiusEstimate(s, sum, radius, kernel);
 }
 
 // The seed's estimator: every photon of the cell holding x, spread over the cell's cross-section.
-PH_FN vec3 estimateCell(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s) {
+PH_FN vec3 estimateCell(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float u) {
     ivec3 cell = cellOf(s.position, grid);
     uint begin;
     uint end;
     cellRange(BUF_ARG grid, cellKey(cell, grid), begin, end);
+    uint stride = subsampleStride(end - begin, BUF(params).gatherBudget);
     vec3 sum = vec3(0.0f);
-    for (uint i = begin; i < end; ++i) {
+    for (uint i = subsampleStart(begin, stride, u); i < end; i += stride) {
         Photon p = BUF(sortedPhotons)[i];
         if (grid.kind == GRID_BOUNDED || all(equal(cellOf(p.position, grid), cell))) {
             sum += photonReflectance(s, p.incoming) * p.power;
         }
     }
-    return sum * estimateScale(s) / (grid.cellSize * grid.cellSize);
+    return sum * float(stride) * estimateScale(s) / (grid.cellSize * grid.cellSize);
 }
 
-// Jensen's k-nearest-neighbour estimate with a max-heap of the k closest photons so far.
+// Jensen's k-nearest-neighbour estimate with a max-heap of the k closest photons so far. It visits
+// every photon within the maximum radius (no subsampling: a thinned cell would skew the k-th
+// distance).
 PH_FN vec3 estimateKnn(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float maxRadius, uint k, uint kernel) {
     float heapDistance[KNN_MAX];
     uint heapPhoton[KNN_MAX];
     uint count = 0u;
     float maxR2 = maxRadius * maxRadius;
-    CellQuery q = beginCellQuery(s.position, maxRadius, grid);
+    float thickness = DISC_THICKNESS * maxRadius;
+    CellQuery q = beginCellQuery(s.position, discExtent(s.normal, maxRadius, thickness), grid);
     uint key;
     while (nextCell(q, grid, key)) {
         uint begin;
@@ -168,7 +211,7 @@ PH_FN vec3 estimateKnn(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float
             Photon p = BUF(sortedPhotons)[i];
             vec3 d = p.position - s.position;
             float d2 = dot(d, d);
-            if (d2 >= maxR2 || (count == k && d2 >= heapDistance[0])) {
+            if (d2 >= maxR2 || (count == k && d2 >= heapDistance[0]) || abs(dot(d, s.normal)) > thickness) {
                 continue;
             }
             if (isBlack(photonReflectance(s, p.incoming))) {
@@ -214,25 +257,26 @@ PH_FN vec3 estimateKnn(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float
     vec3 sum = vec3(0.0f);
     for (uint j = 0u; j < count; ++j) {
         Photon p = BUF(sortedPhotons)[heapPhoton[j]];
-        sum += photonReflectance(s, p.incoming) * p.power * kernelProfile(kernel, heapDistance[j], r2);
+        sum += photonReflectance(s, p.incoming) * p.power * kernelProfile(kernel, heapDistance[j] / r2);
     }
     return sum * estimateScale(s) * (kernelNorm(kernel) / (PI * r2));
 }
 
-// The estimate the frame's settings ask for, from photon map `map` (MAP_GLOBAL or MAP_CAUSTIC).
-PH_FN vec3 photonEstimate(BUF_PARAM uint map, PH_IN(Shading) s) {
+// The estimate from photon map `map` (MAP_GLOBAL or MAP_CAUSTIC) with the given ESTIMATOR_*.
+// GPU backends pass a compile-time constant, so that each variant carries only its own code.
+// `u` ∈ [0, 1) places the subsampling of dense cells.
+PH_FN vec3 photonEstimate(BUF_PARAM uint map, PH_IN(Shading) s, uint estimator, float u) {
     GridParams grid = BUF(params).grids[map];
     if (grid.photonCapacity == 0u) {
         return vec3(0.0f);
     }
-    uint estimator = BUF(params).estimator;
     if (estimator == ESTIMATOR_CELL) {
-        return estimateCell(BUF_ARG grid, s);
+        return estimateCell(BUF_ARG grid, s, u);
     }
     if (estimator == ESTIMATOR_KNN) {
         return estimateKnn(BUF_ARG grid, s, grid.radius, BUF(params).knnK, BUF(params).kernel);
     }
-    return estimateRadius(BUF_ARG grid, s, grid.radius, BUF(params).kernel);
+    return estimateRadius(BUF_ARG grid, s, grid.radius, BUF(params).kernel, u);
 }
 
 // Photons in the cell holding x, for the grid-occupancy view.

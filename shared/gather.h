@@ -22,7 +22,7 @@ PH_FN Shading makeShading(vec3 position, vec3 normal, vec3 wo, PH_IN(Material) m
     return s;
 }
 
-PH_FN vec3 finalGather(BUF_PARAM PH_IN(Shading) s, PH_INOUT(Rng) rng) {
+PH_FN vec3 finalGather(BUF_PARAM PH_IN(Shading) s, uint estimator, PH_INOUT(Rng) rng) {
     uint rays = BUF(params).gatherRays;
     vec3 sum = vec3(0.0f);
     for (uint g = 0u; g < rays; ++g) {
@@ -41,7 +41,7 @@ PH_FN vec3 finalGather(BUF_PARAM PH_IN(Shading) s, PH_INOUT(Rng) rng) {
             vec3 wo = -ray.direction;
             if (isDiffuseLike(m)) {
                 Shading there = makeShading(hit.position, facingNormal(hit.normal, wo), wo, diffusePart(m));
-                sum += weight * photonEstimate(BUF_ARG MAP_GLOBAL, there);
+                sum += weight * photonEstimate(BUF_ARG MAP_GLOBAL, there, estimator, rngNext(rng));
                 break;
             }
             if (!isSpecular(m)) {
@@ -64,34 +64,56 @@ PH_FN vec3 heatColor(float t) {
     return clamp(vec3(x - 2.0f, x < 2.0f ? x : 4.0f - x, 2.0f - x), vec3(0.0f), vec3(1.0f));
 }
 
-// This frame's radiance through the pixel.
-PH_FN vec3 gatherPixel(BUF_PARAM uint pixel) {
+PH_FN bool viewShowsDirect(uint view) { return view == VIEW_FINAL || view == VIEW_DIRECT; }
+
+// Whether the view needs photon map `map` at all.
+PH_FN bool viewShowsMap(uint view, uint map) {
+    return view == VIEW_FINAL || (view == VIEW_CAUSTIC && map == MAP_CAUSTIC) || (view == VIEW_GLOBAL && map == MAP_GLOBAL);
+}
+
+// The shading point of a hit point (its reflective coat is not part of it: see diffusePart).
+PH_FN Shading hitPointShading(BUF_PARAM PH_IN(HitPoint) hp) {
+    return makeShading(hp.position, octDecode(hp.normal), octDecode(hp.outgoing), diffusePart(BUF(materials)[hp.material]));
+}
+
+// The pixel's radiance once the photon estimates (reflected radiance at the hit point) are known.
+PH_FN vec3 gatherResult(PH_IN(HitPoint) hp, uint view, vec3 photons) {
+    vec3 radiance = viewShowsDirect(view) ? hp.direct : vec3(0.0f);
+    return hp.material == NONE ? radiance : radiance + hp.weight * photons;
+}
+
+// This frame's radiance through the pixel, for the given ESTIMATOR_* and GLOBAL_* mode. GPU
+// backends pass compile-time constants, so that each variant carries only its own code.
+PH_FN vec3 gatherPixel(BUF_PARAM uint pixel, uint estimator, uint globalMode) {
     HitPoint hp = BUF(hitPoints)[pixel];
     uint view = BUF(params).view;
-    bool showDirect = view == VIEW_FINAL || view == VIEW_DIRECT;
-    vec3 radiance = showDirect ? hp.direct : vec3(0.0f);
     if (hp.material == NONE || view == VIEW_DIRECT) {
-        return radiance;
+        return gatherResult(hp, view, vec3(0.0f));
     }
-    Shading s = makeShading(hp.position, octDecode(hp.normal), octDecode(hp.outgoing),
-                            diffusePart(BUF(materials)[hp.material]));
     if (view == VIEW_GRID) {
         float n = float(cellOccupancy(BUF_ARG MAP_GLOBAL, hp.position));
         return heatColor(n / (n + 32.0f) * 1.5f);
     }
+    Shading s = hitPointShading(BUF_ARG hp);
+    Rng rng = rngCreate(pixel, BUF(params).frameIndex, BUF(params).seed, STREAM_GATHER);
+    float u = rngNext(rng);
     vec3 photons = vec3(0.0f);
-    if (view == VIEW_FINAL || view == VIEW_CAUSTIC) {
-        photons += photonEstimate(BUF_ARG MAP_CAUSTIC, s);
+    if (viewShowsMap(view, MAP_CAUSTIC)) {
+        photons += photonEstimate(BUF_ARG MAP_CAUSTIC, s, estimator, u);
     }
-    if (view == VIEW_FINAL || view == VIEW_GLOBAL) {
-        if (BUF(params).globalMode == GLOBAL_FINAL_GATHER) {
-            Rng rng = rngCreate(pixel, BUF(params).frameIndex, BUF(params).seed, STREAM_GATHER);
-            photons += finalGather(BUF_ARG s, rng);
+    if (viewShowsMap(view, MAP_GLOBAL)) {
+        if (globalMode == GLOBAL_FINAL_GATHER) {
+            photons += finalGather(BUF_ARG s, estimator, rng);
         } else {
-            photons += photonEstimate(BUF_ARG MAP_GLOBAL, s);
+            photons += photonEstimate(BUF_ARG MAP_GLOBAL, s, estimator, u);
         }
     }
-    return radiance + hp.weight * photons;
+    return gatherResult(hp, view, photons);
+}
+
+// The same with the estimator and mode of the frame's parameters.
+PH_FN vec3 gatherPixel(BUF_PARAM uint pixel) {
+    return gatherPixel(BUF_ARG pixel, BUF(params).estimator, BUF(params).globalMode);
 }
 
 PH_NAMESPACE_END

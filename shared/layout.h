@@ -19,38 +19,38 @@ PH_NAMESPACE_BEGIN
 
 // ---- Scene ------------------------------------------------------------------------------------
 
-struct Sphere {
+struct PH_ALIGN16 Sphere {
     vec3 center; float radius;
     uint material; uint pad0; uint pad1; uint pad2;
 };
 
 // The plane dot(normal, x) = offset.
-struct Plane {
+struct PH_ALIGN16 Plane {
     vec3 normal; float offset;
     uint material; uint pad0; uint pad1; uint pad2;
 };
 
 // The parallelogram corner + a·edgeU + b·edgeV, a, b ∈ [0, 1].
-struct Quad {
+struct PH_ALIGN16 Quad {
     vec3 corner; uint material;
     vec3 edgeU; float area;
     vec3 edgeV; float pad0;
     vec3 w; float pad1;  // cross(edgeU, edgeV) / |cross(edgeU, edgeV)|²: gives (a, b) of a point
 };
 
-struct Triangle {
+struct PH_ALIGN16 Triangle {
     vec3 v0; uint material;
     vec3 edge1; float pad0;  // v1 - v0
     vec3 edge2; float pad1;  // v2 - v0
 };
 
-struct Material {
+struct PH_ALIGN16 Material {
     vec3 albedo; uint type;        // diffuse reflectance ρ (diffuse, glossy)
     vec3 specular; float roughness; // mirror reflectance, glass tint, glossy lobe colour; GGX α
     vec3 emission; float ior;      // emitted radiance (area-light surfaces); index of refraction (glass)
 };
 
-struct Light {
+struct PH_ALIGN16 Light {
     vec3 position; uint type;      // point and spot: position; sphere: centre; quad: corner
     vec3 power; float radius;      // emitted flux Φ per channel [W]; sphere radius
     vec3 axis; float spotOuter;    // spot and hemisphere axis, quad normal (unit); spot: 1 - cos of the
@@ -63,20 +63,20 @@ struct Light {
 };
 
 // A bounding sphere of a specular object: the caustic pass emits photons towards these.
-struct CausticTarget {
+struct PH_ALIGN16 CausticTarget {
     vec3 center; float radius;
 };
 
 // ---- Per-frame parameters -------------------------------------------------------------------
 
-struct Camera {
+struct PH_ALIGN16 Camera {
     vec3 position; float lensRadius;   // thin lens: 0 is a pinhole
     vec3 forward; float focusDistance;
     vec3 right; float tanHalfFovY;
     vec3 up; float aspect;             // width / height
 };
 
-struct SceneInfo {
+struct PH_ALIGN16 SceneInfo {
     uint sphereCount; uint planeCount; uint quadCount; uint triangleCount;
     uint materialCount; uint lightCount; uint targetCount; uint pad0;
     vec3 boundsMin; float pad1;        // bounds of everything finite in the scene
@@ -84,7 +84,7 @@ struct SceneInfo {
     vec3 background; float pad3;       // radiance of rays that leave the scene
 };
 
-struct GridParams {
+struct PH_ALIGN16 GridParams {
     vec3 origin; float cellSize;       // bounded: lower corner; both: cell edge length
     uint resolution; uint kind; uint cellCount; uint cellOffset;
     // resolution: bounded grid cells per axis (k); kind: GRID_*; cellCount: k³ or the table size
@@ -93,7 +93,7 @@ struct GridParams {
     // photonOffset/Capacity: this map's slice of the photon arrays; radius: query radius
 };
 
-struct FrameParams {
+struct PH_ALIGN16 FrameParams {
     Camera camera;
     SceneInfo scene;
     GridParams grids[2];                // MAP_GLOBAL, MAP_CAUSTIC
@@ -102,13 +102,14 @@ struct FrameParams {
     // globalPaths/causticPaths: photons emitted this frame by the global and the caustic pass
     uint estimator; uint kernel; uint knnK; uint globalMode;
     uint gatherRays; uint lightSamples; uint view; uint flags;
-    float exposure; uint accumulated; float pad1; float pad2;
-    // accumulated: frames already averaged into the accumulation buffer (the progressive index i)
+    float exposure; uint accumulated; uint gatherBudget; float pad2;
+    // accumulated: frames already averaged into the accumulation buffer (the progressive index i);
+    // gatherBudget: photons a query visits per cell before it subsamples the cell (0: all)
 };
 
 // ---- Photon maps ------------------------------------------------------------------------------
 
-struct Photon {
+struct PH_ALIGN16 Photon {
     vec3 position; uint incoming;  // octahedral-encoded unit direction towards where it came from
     vec3 power; uint flags;        // flux [W]; bounce count of the path when stored
 };
@@ -116,7 +117,7 @@ struct Photon {
 // ---- Eye pass ---------------------------------------------------------------------------------
 
 // Where a pixel's eye path ended on a non-specular surface, and what it already knows.
-struct HitPoint {
+struct PH_ALIGN16 HitPoint {
     vec3 position; uint material;  // material NONE: the path ended elsewhere, `direct` is all
     vec3 weight; uint normal;      // path throughput from the camera; octahedral normal facing ωo
     vec3 direct; uint outgoing;    // weighted emission, background and direct light; octahedral ωo
@@ -152,6 +153,7 @@ PH_SIZE(FrameParams, 64 + 80 + 2 * 48 + 5 * 16); PH_OFFSET(FrameParams, scene, 6
 PH_OFFSET(FrameParams, grids, 144); PH_OFFSET(FrameParams, width, 240);
 PH_OFFSET(FrameParams, globalPaths, 256); PH_OFFSET(FrameParams, estimator, 272);
 PH_OFFSET(FrameParams, gatherRays, 288); PH_OFFSET(FrameParams, exposure, 304);
+PH_OFFSET(FrameParams, gatherBudget, 312);
 PH_SIZE(Photon, 32); PH_OFFSET(Photon, incoming, 12); PH_OFFSET(Photon, power, 16); PH_OFFSET(Photon, flags, 28);
 PH_SIZE(HitPoint, 48); PH_OFFSET(HitPoint, material, 12); PH_OFFSET(HitPoint, weight, 16);
 PH_OFFSET(HitPoint, normal, 28); PH_OFFSET(HitPoint, direct, 32); PH_OFFSET(HitPoint, outgoing, 44);

@@ -77,7 +77,7 @@ PH_FN vec3 directionAroundAxis(vec3 axis, float x, float u) {
 // coordinate maps [-1, 1] to 0..65534, so that 0 and ±1 (the axes) are exact.
 PH_FN uint quantizeSnorm16(float x) { return uint(floor(clamp(x, -1.0f, 1.0f) * 32767.0f + 32767.5f)); }
 
-PH_FN float dequantizeSnorm16(uint q) { return (float(q) - 32767.0f) / 32767.0f; }
+PH_FN float dequantizeSnorm16(uint q) { return (float(q) - 32767.0f) * (1.0f / 32767.0f); }
 
 PH_FN uint octEncode(vec3 n) {
     float l1 = abs(n.x) + abs(n.y) + abs(n.z);
@@ -92,15 +92,18 @@ PH_FN uint octEncode(vec3 n) {
     return quantizeSnorm16(px) | (quantizeSnorm16(py) << 16u);
 }
 
-PH_FN vec3 octDecode(uint e) {
+// The decoded direction before normalisation: enough to tell which side of a surface it is on.
+PH_FN vec3 octDecodeUnnormalized(uint e) {
     float px = dequantizeSnorm16(e & 0xffffu);
     float py = dequantizeSnorm16(e >> 16u);
     vec3 n = vec3(px, py, 1.0f - abs(px) - abs(py));
     float t = max(-n.z, 0.0f);
     n.x += n.x >= 0.0f ? -t : t;
     n.y += n.y >= 0.0f ? -t : t;
-    return unitVector(n);
+    return n;
 }
+
+PH_FN vec3 octDecode(uint e) { return unitVector(octDecodeUnnormalized(e)); }
 
 // Start a new ray at a surface point without hitting that surface again: step off the surface
 // on the side the ray leaves to, by a distance relative to the coordinates' magnitude.

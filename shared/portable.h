@@ -14,8 +14,12 @@
 //    bit. math.h has a polynomial sinCos2Pi for that. sqrt and division are correctly rounded
 //    everywhere we run; FMA contraction is off in the builds that are compared (g++ -ffp-contract=off,
 //    nvcc --fmad=false for parity).
+//  - Mesa (lavapipe) rewrites a lerp-shaped expression a + t·(b - a), e.g. x·(y - 1) + 1, into
+//    an flrp that it computes with an FMA, so the result differs from g++ in the last bit. Declare
+//    such a result PH_PRECISE (GLSL `precise`: no contraction, no inexact rewrites; empty in C++).
 //  - Names reserved in GLSL stay unused: sample, input, output, filter, buffer, shared, half,
 //    active, common, partition, and anything with a double underscore.
+//  - Buffer structs are declared `struct PH_ALIGN16 Name`.
 //  - Buffers are reached through BUF(name): a global buffer in GLSL, a member of the Bindings
 //    struct in C++ that every such function receives first (BUF_PARAM / BUF_ARG).
 #ifndef PHOTON_SHARED_PORTABLE_H
@@ -32,6 +36,8 @@
 #define PH_NAMESPACE_END
 #define PH_STATIC_ASSERT(cond, msg)
 #define PH_NOT(b) not(b)
+#define PH_PRECISE precise
+#define PH_ALIGN16
 #define BUF_PARAM
 #define BUF_ARG
 #define BUF(name) name
@@ -56,6 +62,10 @@
 #define PH_NAMESPACE_END }
 #define PH_STATIC_ASSERT(cond, msg) static_assert(cond, msg)
 #define PH_NOT(b) glm::not_(b)
+#define PH_PRECISE
+// Buffer structs are multiples of 16 bytes; saying so lets compilers load them 16 bytes at a time
+// (GLM's vec3 alone would make them 4-byte aligned).
+#define PH_ALIGN16 alignas(16)
 #define BUF_PARAM const Bindings &bindings,
 #define BUF_ARG bindings,
 #define BUF(name) bindings.name

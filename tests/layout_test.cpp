@@ -49,7 +49,7 @@ const Member kMembers[] = {
     PH_MEMBER(FrameParams, width), PH_MEMBER(FrameParams, seed), PH_MEMBER(FrameParams, globalPaths),
     PH_MEMBER(FrameParams, maxEyeDepth), PH_MEMBER(FrameParams, estimator), PH_MEMBER(FrameParams, globalMode),
     PH_MEMBER(FrameParams, gatherRays), PH_MEMBER(FrameParams, flags), PH_MEMBER(FrameParams, exposure),
-    PH_MEMBER(FrameParams, accumulated),
+    PH_MEMBER(FrameParams, accumulated), PH_MEMBER(FrameParams, gatherBudget),
     PH_MEMBER(Photon, position), PH_MEMBER(Photon, incoming), PH_MEMBER(Photon, power), PH_MEMBER(Photon, flags),
     PH_MEMBER(HitPoint, position), PH_MEMBER(HitPoint, material), PH_MEMBER(HitPoint, weight),
     PH_MEMBER(HitPoint, normal), PH_MEMBER(HitPoint, direct), PH_MEMBER(HitPoint, outgoing),

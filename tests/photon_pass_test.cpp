@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "apps/backends.h"
+#include "core/scene_loader.h"
 #include "test_util.h"
 
 namespace photon {
@@ -61,6 +62,39 @@ TEST(PhotonPass, CausticPassAndGlobalPassAgreeOnCausticFlux) {
     ASSERT_GT(plain.y, 0.0);
     EXPECT_NEAR(split.y / plain.y, 1.0, 0.02) << "caustic map flux, split " << split.y << " plain " << plain.y;
     EXPECT_NEAR(split.x / plain.x, 1.0, 0.02) << "global map flux, split " << split.x << " plain " << plain.x;
+}
+
+}  // namespace
+}  // namespace photon
+
+namespace photon {
+namespace {
+
+// Subsampling dense cells (gather budget) must not change the expected estimate: the caustic of
+// the Cornell box averaged over frames with a harsh budget equals the exhaustive gather.
+TEST(GatherBudget, SubsamplingDenseCellsIsUnbiased) {
+    auto render = [](std::uint32_t budget) {
+        Scene scene = defaultScene();
+        RenderSettings s = scene.render;
+        s.width = 96;
+        s.height = 72;
+        s.photons = 60000;
+        s.view = View::Caustic;
+        s.gatherBudget = budget;
+        auto backend = createBackend("cpu");
+        backend->setScene(scene);
+        backend->setSettings(s);
+        for (int f = 0; f < 48; ++f) {
+            backend->renderFrame();
+        }
+        return backend->image();
+    };
+    Image exhaustive = render(0);
+    Image subsampled = render(8);
+    double a = meanLuminance(subsampled);
+    double b = meanLuminance(exhaustive);
+    EXPECT_NEAR(a / b, 1.0, 0.01);
+    EXPECT_LT(relativeRmse(subsampled, exhaustive), 0.05);
 }
 
 }  // namespace

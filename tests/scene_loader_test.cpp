@@ -10,6 +10,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "test_util.h"
 
 namespace photon {
 namespace {
@@ -52,7 +53,7 @@ std::string renderError(const std::string& render) { return errorOf(sceneWith("r
 
 TEST(SceneLoader, EveryShippedSceneLoads) {
     int count = 0;
-    for (const auto& entry : std::filesystem::directory_iterator(PHOTON_SCENES_DIR)) {
+    for (const auto& entry : std::filesystem::directory_iterator(test::scenesDir())) {
         if (entry.path().extension() == ".json") {
             SCOPED_TRACE(entry.path().string());
             Scene scene = loadSceneFile(entry.path().string());
@@ -65,7 +66,7 @@ TEST(SceneLoader, EveryShippedSceneLoads) {
 
 TEST(SceneLoader, DefaultSceneIsTheCornellBox) {
     Scene embedded = defaultScene();
-    Scene file = loadSceneFile(std::string(PHOTON_SCENES_DIR) + "/cornell.json");
+    Scene file = loadSceneFile(test::scenesDir() + "/cornell.json");
     EXPECT_EQ(embedded.name, file.name);
     EXPECT_EQ(embedded.quads.size(), file.quads.size());
     EXPECT_EQ(embedded.spheres.size(), file.spheres.size());
