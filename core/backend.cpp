@@ -1,6 +1,8 @@
 #include "backend.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 
 #include "error.h"
 
@@ -36,6 +38,7 @@ void Backend::setScene(const Scene& scene) {
 
 void Backend::setSettings(const RenderSettings& settings) {
     settings_ = settings;
+    std::fill(std::begin(grownCapacity_), std::end(grownCapacity_), 0u);
     allocationDirty_ = true;
     frameIndex_ = 0;
     accumulated_ = 0;
@@ -61,6 +64,9 @@ void Backend::prepare() {
     }
     if (allocationDirty_) {
         PhotonBudget budget = planPhotons(scene_, settings_);
+        for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
+            budget.capacity[m] = std::max(budget.capacity[m], grownCapacity_[m]);
+        }
         bool same = allocatedWidth_ == settings_.width && allocatedHeight_ == settings_.height &&
                     budget.globalPaths == allocatedBudget_.globalPaths &&
                     budget.causticPaths == allocatedBudget_.causticPaths &&
@@ -78,11 +84,38 @@ void Backend::prepare() {
 }
 
 void Backend::renderFrame() {
-    prepare();
-    params_ = makeFrameParams(scene_, camera_, settings_, budget_, frameIndex_, accumulated_);
-    stats_ = runFrame(params_);
+    for (int attempt = 0;; ++attempt) {
+        prepare();
+        params_ = makeFrameParams(scene_, camera_, settings_, budget_, frameIndex_, accumulated_);
+        stats_ = runFrame(params_);
+        bool dropped = growPhotonMaps();
+        // A first frame that lost photons runs again with room for them: it replaces the
+        // accumulation, so nothing of the short frame remains. Later frames keep what they have.
+        if (!dropped || accumulated_ > 0 || attempt > 0) {
+            if (dropped && !warnedDropped_) {
+                std::fprintf(stderr, "photon: a photon map overflowed; photons were dropped and it was grown\n");
+                warnedDropped_ = true;
+            }
+            break;
+        }
+    }
     frameIndex_ += 1;
     accumulated_ += 1;
+}
+
+bool Backend::growPhotonMaps() {
+    bool dropped = false;
+    for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
+        std::uint32_t stored = stats_.stored[m];
+        std::uint32_t capacity = stats_.capacity[m];
+        if (capacity == 0 || double(stored) <= 0.8 * double(capacity)) {
+            continue;
+        }
+        dropped = dropped || stored > capacity;
+        grownCapacity_[m] = static_cast<std::uint32_t>(std::min(4.0e9, std::ceil(double(stored) * 1.5)));
+        allocationDirty_ = true;
+    }
+    return dropped;
 }
 
 Image Backend::image() {

@@ -36,7 +36,7 @@ struct FrameStats {
     StageTimes ms;
     std::uint32_t emitted[MAP_COUNT] = {};   // paths of the global and the caustic pass
     std::uint32_t stored[MAP_COUNT] = {};    // photons that reached each map
-    std::uint32_t capacity[MAP_COUNT] = {};  // room in each map; photons beyond it were dropped
+    std::uint32_t capacity[MAP_COUNT] = {};  // room in each map (0: unbounded); photons beyond it were dropped
 };
 
 // A readback of both photon maps: each map's photons in cell order, and its cell ranges
@@ -58,6 +58,7 @@ GridStats gridStats(const std::vector<std::uint32_t>& cellStart);
 struct BackendOptions {
     std::string device;       // Vulkan: index or part of the name; CUDA: index
     bool validation = false;  // Vulkan: enable the validation layer; any message is an error
+    bool parity = false;      // CUDA: kernels without FMA contraction, bit-exact with the CPU backend
 };
 
 class Backend {
@@ -100,6 +101,10 @@ protected:
     virtual Image readAccumulation() = 0;
 
 private:
+    // Grows a photon map that came within 80% of its capacity (GPU backends drop photons beyond
+    // it). Returns true if photons were dropped this frame.
+    bool growPhotonMaps();
+
     Scene scene_;
     RenderSettings settings_;
     CameraDesc camera_;
@@ -113,6 +118,8 @@ private:
     std::uint32_t allocatedWidth_ = 0;
     std::uint32_t allocatedHeight_ = 0;
     PhotonBudget allocatedBudget_;
+    std::uint32_t grownCapacity_[MAP_COUNT] = {};  // capacities raised by growPhotonMaps()
+    bool warnedDropped_ = false;
 };
 
 }  // namespace photon

@@ -91,7 +91,7 @@ protected:
         stats.emitted[MAP_CAUSTIC] = params.causticPaths;
         for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
             stats.stored[m] = static_cast<std::uint32_t>(traced_[m].size());
-            stats.capacity[m] = stats.stored[m];
+            stats.capacity[m] = 0;  // unbounded: the CPU appends to growing arrays
         }
         return stats;
     }
