@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -59,7 +60,17 @@ inline double chiSquareThreshold(int dof, double z = 4.26) {
     return k * t * t * t;
 }
 
-// Where tests write images that help explain a failure.
-inline std::string testOutputPath(const std::string& name) { return std::string(PHOTON_TEST_OUTPUT_DIR) + "/" + name; }
+// The shipped scenes: $PHOTON_SCENES_DIR if set (a build run from another checkout, as on the
+// GPU machine), else the source tree the tests were built from.
+inline std::string scenesDir() {
+    const char* env = std::getenv("PHOTON_SCENES_DIR");
+    return env ? env : PHOTON_SCENES_DIR;
+}
+
+// Where tests write images that help explain a failure: $PHOTON_TEST_OUTPUT_DIR if set.
+inline std::string testOutputPath(const std::string& name) {
+    const char* env = std::getenv("PHOTON_TEST_OUTPUT_DIR");
+    return std::string(env ? env : PHOTON_TEST_OUTPUT_DIR) + "/" + name;
+}
 
 }  // namespace photon::test

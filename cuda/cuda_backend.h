@@ -1,0 +1,22 @@
+// The CUDA backend: every stage on the GPU, one kernel per stage from shared/, photons and the
+// image kept on the device across frames, one copy back into pinned memory at the end.
+#pragma once
+
+#include <memory>
+
+#include "core/backend.h"
+#include "stages.h"
+
+namespace photon {
+
+// BackendOptions.device: the CUDA device index (default 0). options.parity selects kernels built
+// without FMA contraction, whose integer stages and hit points match the CPU backend exactly.
+std::unique_ptr<Backend> createCudaBackend(const BackendOptions& options);
+
+// Devices the CUDA runtime sees; 0 when there is no driver or no GPU. Never throws.
+int cudaDeviceCount();
+
+// Launch shapes of a CUDA backend (photon-bench sweeps them). No effect on other backends.
+void setCudaLaunchConfig(Backend& backend, const LaunchConfig& config);
+
+}  // namespace photon

@@ -1,0 +1,92 @@
+// Comparing a GPU backend with the CPU reference, stage by stage: the photon maps (the same
+// photons in every cell, bit for bit, whatever order they were appended in), the hit points, and
+// the images.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "core/backend.h"
+#include "core/image.h"
+#include "test_util.h"
+
+namespace photon::test {
+
+struct StageOutputs {
+    PhotonMaps maps;
+    std::vector<HitPoint> hitPoints;
+    Image frame;  // the last frame's radiance
+    Image image;  // the accumulated image
+    FrameStats stats;
+};
+
+inline StageOutputs renderStages(Backend& backend, const Scene& scene, const RenderSettings& settings) {
+    backend.setScene(scene);
+    backend.setSettings(settings);
+    for (std::uint32_t f = 0; f < settings.frames; ++f) {
+        backend.renderFrame();
+    }
+    StageOutputs out;
+    out.maps = backend.readPhotonMaps();
+    out.hitPoints = backend.readHitPoints();
+    out.frame = backend.readFrame();
+    out.image = backend.image();
+    out.stats = backend.lastFrameStats();
+    return out;
+}
+
+// Each cell's photons as raw bytes, sorted, so that append order does not matter.
+inline std::vector<std::string> cellContents(const std::vector<Photon>& photons, std::uint32_t begin, std::uint32_t end) {
+    std::vector<std::string> out;
+    for (std::uint32_t i = begin; i < end; ++i) {
+        out.emplace_back(reinterpret_cast<const char*>(&photons[i]), sizeof(Photon));
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+// Identical cell ranges, and the same photons in every cell, bit for bit.
+inline void expectSamePhotonMaps(const PhotonMaps& actual, const PhotonMaps& expected) {
+    for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
+        SCOPED_TRACE(m == MAP_GLOBAL ? "global map" : "caustic map");
+        ASSERT_EQ(actual.photons[m].size(), expected.photons[m].size());
+        ASSERT_EQ(actual.cellStart[m].size(), expected.cellStart[m].size());
+        ASSERT_TRUE(actual.cellStart[m] == expected.cellStart[m]) << "cell ranges differ";
+        std::size_t differing = 0;
+        for (std::size_t c = 0; c + 1 < expected.cellStart[m].size(); ++c) {
+            std::uint32_t begin = expected.cellStart[m][c];
+            std::uint32_t end = expected.cellStart[m][c + 1];
+            if (begin != end && cellContents(actual.photons[m], begin, end) != cellContents(expected.photons[m], begin, end)) {
+                differing += 1;
+            }
+        }
+        EXPECT_EQ(differing, 0u) << "cells whose photons differ";
+    }
+}
+
+inline void expectSameHitPoints(const std::vector<HitPoint>& actual, const std::vector<HitPoint>& expected) {
+    ASSERT_EQ(actual.size(), expected.size());
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < actual.size(); ++i) {
+        differing += std::memcmp(&actual[i], &expected[i], sizeof(HitPoint)) != 0 ? 1 : 0;
+    }
+    EXPECT_EQ(differing, 0u) << "of " << actual.size() << " hit points differ";
+}
+
+// Relative RMSE of an image against the reference; on failure writes both and their difference.
+inline void expectImagesClose(const Image& actual, const Image& expected, double tolerance, const std::string& name) {
+    ASSERT_TRUE(allFinite(actual)) << name << ": NaN or Inf";
+    double error = relativeRmse(actual, expected);
+    if (!(error <= tolerance)) {
+        writeImage(testOutputPath(name + "-actual.exr"), actual, 0.0f, Tonemap::Clamp);
+        writeImage(testOutputPath(name + "-expected.exr"), expected, 0.0f, Tonemap::Clamp);
+        writeImage(testOutputPath(name + "-difference.png"), differenceImage(actual, expected), 0.0f, Tonemap::Clamp);
+    }
+    EXPECT_LE(error, tolerance) << name << ": relative RMSE (images in " << testOutputPath("") << ")";
+}
+
+}  // namespace photon::test
