@@ -1,0 +1,337 @@
+// photon-bench: frame and per-stage times over scenes × resolutions × photons per frame ×
+// backends. Times are the backends' own stage timers (CUDA events, Vulkan timestamps, a steady
+// clock on the CPU), medians over timed frames after warm-up frames. Prints a table; writes
+// JSON and CSV for tools/plot_bench.py.
+//
+//   photon-bench --backends cpu,cuda --scenes cornell --resolutions 640x480,1920x1080
+//                --photons 1000000 --frames 20 --warmup 3 --json bench.json --csv bench.csv
+//   photon-bench --grid-sweep 1000000,2000000,4000000,8000000,16000000   (grid build rate)
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <sstream>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "apps/backends.h"
+#include "apps/render_options.h"
+#include "core/error.h"
+#include "core/scene_loader.h"
+#ifdef PHOTON_HAVE_CUDA
+#include "cuda/cuda_backend.h"
+#endif
+
+namespace photon {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+const Clock::time_point kProcessStart = Clock::now();
+
+struct Row {
+    std::string scene;
+    std::string backend;
+    std::string device;
+    std::uint32_t width = 0;
+    std::uint32_t height = 0;
+    std::uint32_t photons = 0;
+    std::string variant;         // launch configuration or grid build, when swept
+    StageTimes median;           // per-stage medians
+    double frameMs = 0.0;        // median of per-frame totals
+    double storedPhotons = 0.0;  // both maps, last frame
+    double firstImageMs = 0.0;   // backend creation → first image on the host
+};
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    std::size_t n = v.size();
+    return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
+}
+
+std::vector<std::string> split(const std::string& s) {
+    std::vector<std::string> out;
+    std::stringstream in(s);
+    for (std::string item; std::getline(in, item, ',');) {
+        if (!item.empty()) {
+            out.push_back(item);
+        }
+    }
+    return out;
+}
+
+std::pair<std::uint32_t, std::uint32_t> parseResolution(const std::string& s) {
+    unsigned w = 0;
+    unsigned h = 0;
+    char x = 0;
+    std::istringstream in(s);
+    if (!(in >> w >> x >> h) || x != 'x' || w == 0 || h == 0 || w > 16384 || h > 16384) {
+        throw InputError("--resolutions: '" + s + "' is not WIDTHxHEIGHT");
+    }
+    return {w, h};
+}
+
+Scene sceneNamed(const std::string& name, const std::string& scenesDir) {
+    if (name == "cornell") {
+        return defaultScene();
+    }
+    return loadSceneFile(scenesDir + "/" + name + ".json");
+}
+
+Row measure(Backend& backend, const Scene& scene, RenderSettings settings, std::uint32_t warmup, std::uint32_t frames,
+            Clock::time_point created) {
+    backend.setScene(scene);
+    backend.setSettings(settings);
+    Row row;
+    row.backend = backend.name();
+    row.device = backend.deviceName();
+    row.width = settings.width;
+    row.height = settings.height;
+    row.photons = settings.photons;
+    backend.renderFrame();
+    backend.image();
+    row.firstImageMs = std::chrono::duration<double, std::milli>(Clock::now() - created).count();
+    for (std::uint32_t f = 1; f < warmup; ++f) {
+        backend.renderFrame();
+    }
+    std::vector<double> stage[5];
+    std::vector<double> total;
+    for (std::uint32_t f = 0; f < frames; ++f) {
+        backend.renderFrame();
+        const StageTimes& t = backend.lastFrameStats().ms;
+        double values[5] = {t.tracePhotons, t.buildGrid, t.tracePixels, t.gather, t.accumulate};
+        for (int i = 0; i < 5; ++i) {
+            stage[i].push_back(values[i]);
+        }
+        total.push_back(t.total());
+    }
+    row.median = {median(stage[0]), median(stage[1]), median(stage[2]), median(stage[3]), median(stage[4])};
+    row.frameMs = median(total);
+    const FrameStats& s = backend.lastFrameStats();
+    row.storedPhotons = double(s.stored[MAP_GLOBAL]) + double(s.stored[MAP_CAUSTIC]);
+    return row;
+}
+
+void printHeader() {
+    std::printf("%-9s %-7s %-10s %9s %-26s %9s %9s %9s %9s %9s %9s %9s %9s\n", "scene", "backend", "resolution",
+                "photons", "variant", "trace ph", "grid", "trace px", "gather", "accum", "frame ms", "Mphot/s",
+                "grid G/s");
+}
+
+void printRow(const Row& r) {
+    double photonRate = r.median.tracePhotons > 0 ? r.photons / r.median.tracePhotons / 1e3 : 0.0;
+    double gridRate = r.median.buildGrid > 0 ? r.storedPhotons / r.median.buildGrid / 1e6 : 0.0;
+    std::printf("%-9s %-7s %4ux%-5u %9u %-26s %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.1f %9.2f\n", r.scene.c_str(),
+                r.backend.c_str(), r.width, r.height, r.photons, r.variant.c_str(), r.median.tracePhotons,
+                r.median.buildGrid, r.median.tracePixels, r.median.gather, r.median.accumulate, r.frameMs, photonRate,
+                gridRate);
+    std::fflush(stdout);
+}
+
+nlohmann::json toJson(const Row& r) {
+    return {{"scene", r.scene},
+            {"backend", r.backend},
+            {"device", r.device},
+            {"width", r.width},
+            {"height", r.height},
+            {"photons", r.photons},
+            {"variant", r.variant},
+            {"stages_ms",
+             {{"tracePhotons", r.median.tracePhotons},
+              {"buildGrid", r.median.buildGrid},
+              {"tracePixels", r.median.tracePixels},
+              {"gather", r.median.gather},
+              {"accumulate", r.median.accumulate}}},
+            {"frame_ms", r.frameMs},
+            {"stored_photons", r.storedPhotons},
+            {"photons_per_second", r.median.tracePhotons > 0 ? r.photons / r.median.tracePhotons * 1e3 : 0.0},
+            {"grid_photons_per_second", r.median.buildGrid > 0 ? r.storedPhotons / r.median.buildGrid * 1e3 : 0.0},
+            {"first_image_ms", r.firstImageMs}};
+}
+
+void writeOutputs(const std::vector<Row>& rows, const std::string& jsonPath, const std::string& csvPath,
+                  double processToFirstImageMs) {
+    if (!jsonPath.empty()) {
+        nlohmann::json j;
+        j["process_start_to_first_image_ms"] = processToFirstImageMs;
+        j["rows"] = nlohmann::json::array();
+        for (const Row& r : rows) {
+            j["rows"].push_back(toJson(r));
+        }
+        std::ofstream(jsonPath) << j.dump(2) << "\n";
+    }
+    if (!csvPath.empty()) {
+        std::ofstream csv(csvPath);
+        csv << "scene,backend,device,width,height,photons,variant,tracePhotons,buildGrid,tracePixels,gather,accumulate,"
+               "frame_ms,stored_photons,first_image_ms\n";
+        for (const Row& r : rows) {
+            csv << r.scene << "," << r.backend << ",\"" << r.device << "\"," << r.width << "," << r.height << ","
+                << r.photons << "," << r.variant << "," << r.median.tracePhotons << "," << r.median.buildGrid << ","
+                << r.median.tracePixels << "," << r.median.gather << "," << r.median.accumulate << "," << r.frameMs
+                << "," << r.storedPhotons << "," << r.firstImageMs << "\n";
+        }
+    }
+}
+
+// Runs `measure` once per CUDA launch shape (threads per photon block, pixel tile).
+void sweepLaunchShapes([[maybe_unused]] Backend& backend, [[maybe_unused]] const std::function<void(const std::string&)>& measure) {
+#ifdef PHOTON_HAVE_CUDA
+    for (std::uint32_t photonBlock : {64u, 128u, 256u}) {
+        for (auto [bx, by] : {std::pair{8u, 8u}, {16u, 8u}, {32u, 4u}, {16u, 16u}, {32u, 8u}}) {
+            LaunchConfig c;
+            c.photonBlock = photonBlock;
+            c.pixelBlockX = bx;
+            c.pixelBlockY = by;
+            setCudaLaunchConfig(backend, c);
+            measure(std::to_string(photonBlock) + "/" + std::to_string(bx) + "x" + std::to_string(by));
+        }
+    }
+    setCudaLaunchConfig(backend, LaunchConfig{});
+#endif
+}
+
+int run(int argc, char** argv) {
+    CLI::App app{"Photon benchmark: per-stage times over scenes, resolutions, photon counts and backends",
+                 "photon-bench"};
+    std::string backends = "cpu";
+    std::string scenes = "cornell";
+    std::string scenesDir = PHOTON_SCENES_DIR;
+    std::string resolutions = "640x480,800x600,1024x768,1280x720,1920x1080,2560x1600,3840x2400";
+    std::string photons = "1000000";
+    std::string estimator = "radius";
+    std::vector<std::string> vary;
+    std::string gridSweep;
+    std::string jsonPath;
+    std::string csvPath;
+    std::uint32_t frames = 20;
+    std::uint32_t warmup = 3;
+    std::uint32_t cpuFrames = 3;
+    bool launchSweep = false;
+    BackendOptions options;
+    app.add_option("--backends", backends, "Comma-separated: cpu,cuda,vulkan");
+    app.add_option("--scenes", scenes, "Comma-separated scene names (files in --scenes-dir; cornell is built in)");
+    app.add_option("--scenes-dir", scenesDir, "Where scene files are");
+    app.add_option("--resolutions", resolutions, "Comma-separated WIDTHxHEIGHT");
+    app.add_option("--photons", photons, "Comma-separated photon paths per frame");
+    app.add_option("--estimator", estimator, "Radiance estimate: " + choices(Estimator{}));
+    app.add_option("--frames", frames, "Timed frames per measurement (GPU backends)")->check(CLI::Range(1u, 100000u));
+    app.add_option("--cpu-frames", cpuFrames, "Timed frames per measurement on the CPU")->check(CLI::Range(1u, 1000u));
+    app.add_option("--warmup", warmup, "Untimed frames first")->check(CLI::Range(1u, 1000u));
+    app.add_option("--vary", vary, "KEY=V1,V2,...: also measure each value of a scene-file render setting "
+                                   "(cell_size, gather_budget, radius, caustic_radius, caustic_fraction, estimator, ...)");
+    app.add_option("--grid-sweep", gridSweep, "Comma-separated photon counts: grid build rate at 320x240");
+    app.add_flag("--launch-sweep", launchSweep, "CUDA: sweep block shapes of every stage");
+    app.add_option("--device", options.device, "GPU to use");
+    app.add_option("--json", jsonPath, "Write the rows as JSON");
+    app.add_option("--csv", csvPath, "Write the rows as CSV");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        int code = app.exit(e);
+        return code == 0 ? 0 : 2;
+    }
+    Estimator est;
+    if (!parse(estimator, est)) {
+        throw InputError("--estimator: unknown value '" + estimator + "'");
+    }
+
+    // What to measure: settings and a label, per scene.
+    struct Case {
+        RenderSettings settings;
+        std::string variant;
+        bool launchSweep = false;
+    };
+    auto casesFor = [&](const Scene& scene) {
+        RenderSettings base = scene.render;
+        base.estimator = est;
+        base.frames = 1;
+        std::vector<Case> cases;
+        if (!gridSweep.empty()) {
+            for (const std::string& n : split(gridSweep)) {
+                RenderSettings s = base;
+                s.width = 320;
+                s.height = 240;
+                s.photons = static_cast<std::uint32_t>(std::stoul(n));
+                cases.push_back({s, "grid"});
+            }
+            return cases;
+        }
+        for (const std::string& res : split(resolutions)) {
+            for (const std::string& n : split(photons)) {
+                RenderSettings s = base;
+                std::tie(s.width, s.height) = parseResolution(res);
+                s.photons = static_cast<std::uint32_t>(std::stoul(n));
+                cases.push_back({s, "", launchSweep});
+            }
+        }
+        // Each --vary multiplies the cases by its values.
+        for (const std::string& v : vary) {
+            auto eq = v.find('=');
+            if (eq == std::string::npos) {
+                throw InputError("--vary " + v + ": expected KEY=V1,V2");
+            }
+            std::string key = v.substr(0, eq);
+            std::vector<Case> varied;
+            for (const Case& c : cases) {
+                for (const std::string& value : split(v.substr(eq + 1))) {
+                    Case d = c;
+                    applySetting(d.settings, key, value);
+                    d.variant += (d.variant.empty() ? "" : " ") + key + "=" + value;
+                    varied.push_back(d);
+                }
+            }
+            cases = varied;
+        }
+        return cases;
+    };
+
+    std::vector<Row> rows;
+    double processToFirstImage = 0.0;
+    printHeader();
+    for (const std::string& backendName : split(backends)) {
+        Clock::time_point created = Clock::now();
+        std::unique_ptr<Backend> backend = createBackend(backendName, options);
+        bool cpu = backendName == "cpu";
+        for (const std::string& sceneName : split(scenes)) {
+            Scene scene = sceneNamed(sceneName, scenesDir);
+            auto add = [&](const RenderSettings& s, const std::string& variant) {
+                Row r = measure(*backend, scene, s, cpu ? 1 : warmup, cpu ? cpuFrames : frames, created);
+                r.scene = sceneName;
+                r.variant = variant;
+                if (processToFirstImage == 0.0) {
+                    processToFirstImage =
+                        r.firstImageMs + std::chrono::duration<double, std::milli>(created - kProcessStart).count();
+                }
+                created = Clock::now();
+                printRow(r);
+                rows.push_back(r);
+            };
+            for (const Case& c : casesFor(scene)) {
+                if (c.launchSweep && backendName == "cuda") {
+                    sweepLaunchShapes(*backend, [&](const std::string& shape) { add(c.settings, shape); });
+                } else {
+                    add(c.settings, c.variant);
+                }
+            }
+        }
+    }
+    std::printf("process start to first image: %.1f ms\n", processToFirstImage);
+    writeOutputs(rows, jsonPath, csvPath, processToFirstImage);
+    return 0;
+}
+
+}  // namespace
+}  // namespace photon
+
+int main(int argc, char** argv) {
+    try {
+        return photon::run(argc, argv);
+    } catch (const photon::InputError& e) {
+        std::fprintf(stderr, "photon-bench: %s\n", e.what());
+        return 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "photon-bench: %s\n", e.what());
+        return 1;
+    }
+}
