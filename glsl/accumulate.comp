@@ -1,0 +1,16 @@
+#version 460
+// Stage accumulate: one invocation per pixel, folding this frame into the running mean.
+#extension GL_GOOGLE_include_directive : require
+#include "shared/bindings.h"
+#include "shared/progressive.h"
+#include "glsl/dispatch.h"
+
+layout(local_size_x = GROUP_SIZE) in;
+
+void main() {
+    uint pixel = invocationIndex();
+    if (pixel >= params.width * params.height) {
+        return;
+    }
+    accumulation[pixel] = accumulateMean(accumulation[pixel], frameRadiance[pixel], params.accumulated);
+}

@@ -1,0 +1,37 @@
+// How the Vulkan backend lays out its dispatches, for the host (vulkan/) and the shaders alike,
+// in the dialect of shared/portable.h.
+#ifndef PHOTON_GLSL_DISPATCH_H
+#define PHOTON_GLSL_DISPATCH_H
+
+#include "shared/constants.h"
+
+PH_NAMESPACE_BEGIN
+
+PH_CONST uint GROUP_SIZE = 64u;       // invocations per workgroup of the per-photon and per-pixel stages
+PH_CONST uint MAX_GROUPS_X = 65535u;  // the smallest maxComputeWorkGroupCount[0] Vulkan allows;
+                                      // larger dispatches wrap into y
+PH_CONST uint SCAN_ITEMS = 4u;        // cells each invocation of the scan sums in sequence
+
+// The counters buffer: the COUNTER_* slots, then the indirect-dispatch arguments (x, y, z
+// groups) of the count and scatter passes of each map, written by gridArgs.comp.
+PH_CONST uint GRID_ARGS = COUNTER_COUNT;
+PH_CONST uint COUNTER_WORDS = GRID_ARGS + 3u * MAP_COUNT;
+
+PH_NAMESPACE_END
+
+#ifndef __cplusplus
+// Linear index of this workgroup in a dispatch that may wrap into y.
+uint workgroupIndex() { return gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x; }
+
+// Linear index of this invocation, in workgroups of GROUP_SIZE. (Not gl_WorkGroupSize: this file
+// comes before the shader's local_size declaration, and glslang silently reads 1 there.)
+uint invocationIndex() { return workgroupIndex() * GROUP_SIZE + gl_LocalInvocationID.x; }
+
+// Photons a map holds this frame: those tracePhotons counted, up to the map's capacity.
+uint storedPhotons(uint map) {
+    uint counter = map == MAP_GLOBAL ? COUNTER_STORED_GLOBAL : COUNTER_STORED_CAUSTIC;
+    return min(counters[counter], params.grids[map].photonCapacity);
+}
+#endif
+
+#endif

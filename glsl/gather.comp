@@ -1,0 +1,20 @@
+#version 460
+// Stage gather: one invocation per pixel, the photon estimates at its hit point. The estimator
+// and the global mode are specialization constants, so each pipeline variant carries only its
+// own estimator (the k-nearest heap alone would otherwise burden every variant).
+#extension GL_GOOGLE_include_directive : require
+#include "shared/bindings.h"
+#include "shared/gather.h"
+#include "glsl/dispatch.h"
+
+layout(local_size_x = GROUP_SIZE) in;
+layout(constant_id = 1) const uint ESTIMATOR = 1u;    // ESTIMATOR_*
+layout(constant_id = 2) const uint GLOBAL_MODE = 0u;  // GLOBAL_*
+
+void main() {
+    uint pixel = invocationIndex();
+    if (pixel >= params.width * params.height) {
+        return;
+    }
+    frameRadiance[pixel] = vec4(gatherPixel(pixel, ESTIMATOR, GLOBAL_MODE), 1.0f);
+}

@@ -1,0 +1,11 @@
+# The Vulkan backend's compute shaders, one per stage (buildGrid in steps), each a thin main()
+# over shared/. Included by glsl/CMakeLists.txt; vulkan/ embeds the headers they compile to.
+photon_compile_shader(tracePhotons tracePhotons.comp)
+photon_compile_shader(gridArgs gridArgs.comp)
+photon_compile_shader(gridCount gridCount.comp)
+photon_compile_shader(gridScan gridScan.comp)
+photon_compile_shader(gridScanAdd gridScanAdd.comp)
+photon_compile_shader(gridScatter gridScatter.comp)
+photon_compile_shader(tracePixels tracePixels.comp)
+photon_compile_shader(gather gather.comp)
+photon_compile_shader(accumulate accumulate.comp)

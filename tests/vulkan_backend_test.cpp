@@ -1,0 +1,379 @@
+// The Vulkan backend against the CPU reference, stage by stage, on the same scenes and settings,
+// with the validation layer on (any message it prints fails the test):
+//   tracePhotons + buildGrid: each map's cellStart identical, and each cell holding the same
+//                             photons bit for bit (in any order: appends race on the GPU);
+//   tracePixels:              hit points bit-identical;
+//   gather, accumulate:       images within a relative RMSE (measured and printed), for every
+//                             estimator, both grids and final gather.
+// Also: every scene in scenes/ renders finite, too-large requests are refused before any work,
+// and a photon map that overflows is grown without losing photons.
+// Bit-exactness is asserted on lavapipe, which the file picks when it is installed (its arithmetic
+// is g++'s: IEEE, no contraction); other drivers may contract FMAs and approximate division, and
+// get the image tolerance only. Skipped when no Vulkan device exists. Building the pipelines costs
+// seconds of LLVM time on lavapipe (less with Mesa's shader cache), so one backend serves the file.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+#include "apps/backends.h"
+#include "core/error.h"
+#include "core/scene_loader.h"
+#include "test_util.h"
+#include "vulkan/context.h"
+#include "vulkan/vulkan_backend.h"
+
+namespace photon {
+namespace {
+
+// A scene with every primitive, material and light type: planes, triangles, glossy and
+// mirror-coated surfaces, point, hemisphere, spot, sphere and quad lights, and a thin lens.
+Scene featureScene() {
+    Scene s;
+    s.name = "feature mix";
+    std::uint32_t white = s.addMaterial("white", makeDiffuse(glm::vec3(0.7f)));
+    std::uint32_t green = s.addMaterial("green", makeDiffuse(glm::vec3(0.2f, 0.6f, 0.2f)));
+    std::uint32_t glossy = s.addMaterial("glossy", makeGlossy(glm::vec3(0.3f, 0.3f, 0.6f), glm::vec3(0.5f), 0.2f));
+    std::uint32_t coated = s.addMaterial("coated", makeReflective(glm::vec3(0.5f, 0.3f, 0.2f), glm::vec3(0.3f)));
+    std::uint32_t glass = s.addMaterial("glass", makeGlass(1.5f, glm::vec3(0.95f)));
+    std::uint32_t mirror = s.addMaterial("mirror", makeMirror(glm::vec3(0.9f)));
+    s.addPlane(glm::vec3(0, 0, 0), glm::vec3(0, 1, 0), coated);
+    s.addPlane(glm::vec3(0, 0, -2), glm::vec3(0, 0, 1), white);
+    s.addQuad(glm::vec3(-2, 0, -2), glm::vec3(0, 3, 0), glm::vec3(0, 0, 4), green);
+    s.addQuad(glm::vec3(-2, 3, -2), glm::vec3(4, 0, 0), glm::vec3(0, 0, 4), white);
+    s.addTriangle(glm::vec3(0.5f, 0, -1), glm::vec3(1.5f, 0, -0.5f), glm::vec3(1.0f, 1.2f, -0.8f), glossy);
+    s.addTriangle(glm::vec3(1.5f, 0, -0.5f), glm::vec3(1.2f, 0, 0.3f), glm::vec3(1.0f, 1.2f, -0.8f), glossy);
+    s.addSphere(glm::vec3(-0.6f, 0.5f, 0.2f), 0.5f, glass);
+    s.addSphere(glm::vec3(0.4f, 0.35f, 0.6f), 0.35f, mirror);
+    s.addSphere(glm::vec3(-1.2f, 1.6f, -1.2f), 0.3f, glossy);
+    s.addPointLight(glm::vec3(0.8f, 2.5f, 0.5f), glm::vec3(4.0f));
+    s.addHemisphereLight(glm::vec3(0, 2.95f, 0), glm::vec3(0, -1, 0), glm::vec3(6.0f));
+    s.addSpotLight(glm::vec3(1.8f, 2.0f, 1.5f), glm::vec3(-1, -1, -1), glm::vec3(5.0f), 30.0f, 20.0f);
+    s.addSphereLight(glm::vec3(-1.5f, 2.4f, 1.0f), 0.15f, glm::vec3(3.0f));
+    s.addQuadLight(glm::vec3(-0.3f, 2.99f, -1.5f), glm::vec3(0.6f, 0, 0), glm::vec3(0, 0, 0.4f), glm::vec3(3.0f));
+    s.camera.position = glm::vec3(0.2f, 1.3f, 4.0f);
+    s.camera.lookAt = glm::vec3(0.0f, 0.8f, 0.0f);
+    s.camera.fovY = 50.0f;
+    s.camera.lensRadius = 0.02f;
+    s.finalize();
+    return s;
+}
+
+// Small images and photon counts, so that the whole file runs in seconds on lavapipe. Queries
+// visit every photon of a cell (gather budget 0): a subsampled cell depends on the order of its
+// photons, which on a GPU is the order in which atomics happened to append them.
+RenderSettings smallSettings(std::uint32_t photons = 40000) {
+    RenderSettings s;
+    s.width = 48;
+    s.height = 36;
+    s.photons = photons;
+    s.radius = 0.08f;
+    s.causticRadius = 0.05f;
+    s.gatherBudget = 0;
+    return s;
+}
+
+// Photons of one cell sorted by their bytes, so that two maps compare regardless of append order.
+std::vector<Photon> sortedCell(const std::vector<Photon>& photons, std::uint32_t begin, std::uint32_t end) {
+    std::vector<Photon> cell(photons.begin() + begin, photons.begin() + end);
+    std::sort(cell.begin(), cell.end(),
+              [](const Photon& a, const Photon& b) { return std::memcmp(&a, &b, sizeof(Photon)) < 0; });
+    return cell;
+}
+
+void expectSameMaps(const PhotonMaps& expected, const PhotonMaps& actual, const std::string& what) {
+    for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
+        const char* map = m == MAP_GLOBAL ? "global" : "caustic";
+        ASSERT_EQ(expected.photons[m].size(), actual.photons[m].size()) << what << ": " << map << " photons";
+        ASSERT_EQ(expected.cellStart[m].size(), actual.cellStart[m].size()) << what << ": " << map << " cells";
+        std::size_t cellMismatches = 0;
+        std::size_t photonMismatches = 0;
+        for (std::size_t c = 0; c + 1 < expected.cellStart[m].size(); ++c) {
+            if (expected.cellStart[m][c] != actual.cellStart[m][c] || expected.cellStart[m][c + 1] != actual.cellStart[m][c + 1]) {
+                cellMismatches += 1;
+                continue;
+            }
+            std::vector<Photon> a = sortedCell(expected.photons[m], expected.cellStart[m][c], expected.cellStart[m][c + 1]);
+            std::vector<Photon> b = sortedCell(actual.photons[m], actual.cellStart[m][c], actual.cellStart[m][c + 1]);
+            for (std::size_t i = 0; i < a.size(); ++i) {
+                photonMismatches += std::memcmp(&a[i], &b[i], sizeof(Photon)) != 0 ? 1 : 0;
+            }
+        }
+        EXPECT_EQ(cellMismatches, 0u) << what << ": " << map << " cells whose range differs";
+        EXPECT_EQ(photonMismatches, 0u) << what << ": " << map << " photons that differ in their cell";
+        std::printf("%s: %s map %zu photons, %zu cells, identical\n", what.c_str(), map, actual.photons[m].size(),
+                    actual.cellStart[m].size() - 1);
+    }
+}
+
+void expectSameHitPoints(const std::vector<HitPoint>& expected, const std::vector<HitPoint>& actual, const std::string& what) {
+    ASSERT_EQ(expected.size(), actual.size()) << what;
+    std::size_t mismatches = 0;
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+        mismatches += std::memcmp(&expected[i], &actual[i], sizeof(HitPoint)) != 0 ? 1 : 0;
+    }
+    EXPECT_EQ(mismatches, 0u) << what << ": hit points that differ (of " << expected.size() << ")";
+}
+
+std::size_t differingPixels(const Image& a, const Image& b) {
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+        n += std::memcmp(&a.pixels[i], &b.pixels[i], sizeof(glm::vec4)) != 0 ? 1 : 0;
+    }
+    return n;
+}
+
+// Relative RMSE of the Vulkan image against the CPU's; prints it with the count of pixels that are
+// not bit-identical.
+double compareImages(const Image& cpu, const Image& vulkan, const std::string& what) {
+    EXPECT_EQ(cpu.pixels.size(), vulkan.pixels.size()) << what;
+    EXPECT_TRUE(allFinite(vulkan)) << what;
+    double error = relativeRmse(vulkan, cpu);
+    std::printf("%s: relative RMSE %.3g, %zu of %zu pixels not bit-identical\n", what.c_str(), error,
+                differingPixels(cpu, vulkan), cpu.pixels.size());
+    return error;
+}
+
+class VulkanBackendTest : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        if (vulkanDeviceCount() == 0) {
+            return;
+        }
+        BackendOptions options;
+        options.validation = true;
+        options.device = "llvmpipe";
+        try {
+            vulkan_ = createVulkanBackend(options).release();
+            lavapipe_ = true;
+        } catch (const RuntimeError&) {
+            options.device = "";
+            vulkan_ = createVulkanBackend(options).release();
+        }
+        cpu_ = createBackend("cpu").release();
+        std::printf("Vulkan device: %s\n", vulkan_->deviceName().c_str());
+    }
+
+    static void TearDownTestSuite() {
+        delete vulkan_;
+        delete cpu_;
+        vulkan_ = nullptr;
+        cpu_ = nullptr;
+    }
+
+    void SetUp() override {
+        if (vulkan_ == nullptr) {
+            GTEST_SKIP() << "no Vulkan device: vulkanDeviceCount() == 0";
+        }
+    }
+
+    // Relative RMSE allowed between the Vulkan and CPU images. On lavapipe only the order of the
+    // photons within a cell differs (atomic appends), so sums round differently: measured ≤ 1e-7.
+    static double imageTolerance() { return lavapipe_ ? 1e-5 : 0.005; }
+
+    // Photon maps and hit points bit for bit, where the arithmetic is the CPU's.
+    static void expectSameStages(const std::string& what, bool maps = true, bool hitPoints = true) {
+        if (!lavapipe_) {
+            std::printf("%s: not lavapipe, bit-exact stages not compared\n", what.c_str());
+            return;
+        }
+        if (maps) {
+            expectSameMaps(cpu_->readPhotonMaps(), vulkan_->readPhotonMaps(), what);
+        }
+        if (hitPoints) {
+            expectSameHitPoints(cpu_->readHitPoints(), vulkan_->readHitPoints(), what);
+        }
+    }
+
+    // Both backends render `frames` frames of the scene.
+    static void render(const Scene& scene, const RenderSettings& settings, std::uint32_t frames = 1) {
+        for (Backend* b : {cpu_, vulkan_}) {
+            b->setScene(scene);
+            b->setSettings(settings);
+            for (std::uint32_t f = 0; f < frames; ++f) {
+                b->renderFrame();
+            }
+        }
+    }
+
+    static Backend* vulkan_;
+    static Backend* cpu_;
+    static bool lavapipe_;  // the device is lavapipe: tracePhotons, buildGrid, tracePixels bit-exact
+};
+
+Backend* VulkanBackendTest::vulkan_ = nullptr;
+Backend* VulkanBackendTest::cpu_ = nullptr;
+bool VulkanBackendTest::lavapipe_ = false;
+
+TEST_F(VulkanBackendTest, PhotonMapsMatchCpuOnBothGrids) {
+    for (GridKind grid : {GridKind::Hashed, GridKind::Bounded}) {
+        RenderSettings settings = smallSettings();
+        settings.grid = grid;
+        settings.gridResolution = 32;
+        for (const Scene& scene : {defaultScene(), featureScene()}) {
+            render(scene, settings);
+            expectSameStages(scene.name + " " + toString(grid), true, false);
+        }
+    }
+}
+
+TEST_F(VulkanBackendTest, HitPointsBitIdentical) {
+    for (const Scene& scene : {defaultScene(), featureScene()}) {
+        render(scene, smallSettings());
+        expectSameStages(scene.name, false, true);
+    }
+}
+
+// gather and accumulate for every estimator on both grids, over two frames (the progressive
+// radius shrinks in the second).
+TEST_F(VulkanBackendTest, EveryEstimatorAndGridAgreesWithCpu) {
+    for (Estimator estimator : {Estimator::Cell, Estimator::Radius, Estimator::Knn, Estimator::Progressive}) {
+        for (GridKind grid : {GridKind::Hashed, GridKind::Bounded}) {
+            RenderSettings settings = smallSettings();
+            settings.estimator = estimator;
+            settings.grid = grid;
+            settings.gridResolution = 32;
+            settings.k = 16;
+            render(featureScene(), settings, 2);
+            std::string what = std::string(toString(estimator)) + " " + toString(grid);
+            EXPECT_LE(compareImages(cpu_->readFrame(), vulkan_->readFrame(), what + " gather"), imageTolerance());
+            EXPECT_LE(compareImages(cpu_->image(), vulkan_->image(), what + " accumulate"), imageTolerance());
+        }
+    }
+}
+
+TEST_F(VulkanBackendTest, FinalGatherAgreesWithCpu) {
+    for (Estimator estimator : {Estimator::Radius, Estimator::Knn}) {
+        RenderSettings settings = smallSettings();
+        settings.globalMode = GlobalMode::FinalGather;
+        settings.gatherRays = 4;
+        settings.estimator = estimator;
+        settings.k = 16;
+        for (const Scene& scene : {defaultScene(), featureScene()}) {
+            render(scene, settings);
+            std::string what = scene.name + " final gather " + toString(estimator);
+            EXPECT_LE(compareImages(cpu_->readFrame(), vulkan_->readFrame(), what), imageTolerance());
+        }
+    }
+}
+
+TEST_F(VulkanBackendTest, EveryViewAgreesWithCpu) {
+    for (View view : {View::Direct, View::Global, View::Caustic, View::Grid}) {
+        RenderSettings settings = smallSettings();
+        settings.view = view;
+        render(featureScene(), settings);
+        EXPECT_LE(compareImages(cpu_->readFrame(), vulkan_->readFrame(), std::string("view ") + toString(view)),
+                  imageTolerance());
+    }
+}
+
+TEST_F(VulkanBackendTest, EverySceneFileRendersFinite) {
+    int scenes = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(PHOTON_SCENES_DIR)) {
+        if (entry.path().extension() != ".json") {
+            continue;
+        }
+        Scene scene = loadSceneFile(entry.path().string());
+        RenderSettings settings = scene.render;
+        settings.width = 40;
+        settings.height = 30;
+        settings.photons = 30000;
+        settings.gatherBudget = 0;  // see smallSettings()
+        render(scene, settings, 2);
+        Image image = vulkan_->image();
+        EXPECT_TRUE(allFinite(image)) << entry.path();
+        EXPECT_GT(meanLuminance(image), 0.0) << entry.path();
+        EXPECT_LE(compareImages(cpu_->image(), image, entry.path().filename().string()), imageTolerance());
+        scenes += 1;
+    }
+    EXPECT_GT(scenes, 0);
+}
+
+// A map that overflows its capacity in the first frame is grown and the frame runs again, so the
+// maps hold every photon: they match the CPU's.
+TEST_F(VulkanBackendTest, OverflowingMapGrowsWithoutLosingPhotons) {
+    RenderSettings settings = smallSettings();
+    settings.photonCapacity = 0.25f;
+    render(defaultScene(), settings);
+    const FrameStats& stats = vulkan_->lastFrameStats();
+    for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
+        EXPECT_LE(stats.stored[m], stats.capacity[m]) << "map " << m;
+        std::printf("map %u: stored %u, capacity %u after growing\n", m, stats.stored[m], stats.capacity[m]);
+    }
+    expectSameStages("grown", true, false);
+    EXPECT_LE(compareImages(cpu_->readFrame(), vulkan_->readFrame(), "grown"), imageTolerance());
+}
+
+// With a gather budget, cells denser than the budget are subsampled from a random start in their
+// photon order, which on the GPU is the order of the atomic appends: the image then differs from
+// the CPU's (and from run to run) by sampling noise, measured at 0.1–10% relative RMSE here, but
+// not in the mean.
+TEST_F(VulkanBackendTest, DefaultGatherBudgetAgreesWithinNoise) {
+    RenderSettings settings = smallSettings();
+    settings.gatherBudget = RenderSettings{}.gatherBudget;
+    settings.grid = GridKind::Bounded;
+    settings.gridResolution = 16;  // cells of hundreds to thousands of photons: most are subsampled
+    for (const Scene& scene : {defaultScene(), featureScene()}) {
+        render(scene, settings);
+        std::string what = scene.name + " subsampled cells";
+        double error = compareImages(cpu_->readFrame(), vulkan_->readFrame(), what);
+        double mean = meanLuminance(vulkan_->readFrame()) / meanLuminance(cpu_->readFrame());
+        std::printf("%s: mean luminance Vulkan/CPU %.5f\n", what.c_str(), mean);
+        EXPECT_TRUE(std::isfinite(error)) << what;
+        EXPECT_NEAR(mean, 1.0, 0.02) << what;
+    }
+}
+
+// Any warning or error of the validation layer reaches the program as a RuntimeError.
+TEST_F(VulkanBackendTest, ValidationMessagesBecomeErrors) {
+    vk::ContextOptions options;
+    options.validation = true;
+    vk::Context context(options);
+    VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+    info.size = 0;  // invalid: VUID-VkBufferCreateInfo-size-00912
+    info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    VkBuffer buffer = VK_NULL_HANDLE;
+    if (vkCreateBuffer(context.device, &info, nullptr, &buffer) == VK_SUCCESS) {
+        vkDestroyBuffer(context.device, buffer, nullptr);
+    }
+    EXPECT_THROW(context.checkValidation("a test"), RuntimeError);
+    EXPECT_NO_THROW(context.checkValidation("a test"));  // each message is reported once
+}
+
+// Requests beyond the device's limits are refused with InputError before any work, naming the
+// buffer; the backend stays usable.
+TEST_F(VulkanBackendTest, TooLargeRequestsAreRefusedBeforeWork) {
+    Scene scene = defaultScene();
+    RenderSettings huge = smallSettings();
+    huge.width = 16384;
+    huge.height = 16384;
+    vulkan_->setScene(scene);
+    vulkan_->setSettings(huge);
+    try {
+        vulkan_->prepare();
+        ADD_FAILURE() << "16384×16384 was accepted";
+    } catch (const InputError& e) {
+        std::printf("refused: %s\n", e.what());
+        EXPECT_NE(std::string(e.what()).find("resolution"), std::string::npos) << e.what();
+    }
+    RenderSettings many = smallSettings();
+    many.photons = 268435456;
+    vulkan_->setSettings(many);
+    try {
+        vulkan_->prepare();
+        ADD_FAILURE() << many.photons << " photons were accepted";
+    } catch (const InputError& e) {
+        std::printf("refused: %s\n", e.what());
+        EXPECT_NE(std::string(e.what()).find("photon"), std::string::npos) << e.what();
+    }
+    vulkan_->setSettings(smallSettings());
+    vulkan_->renderFrame();
+    EXPECT_TRUE(allFinite(vulkan_->image()));
+}
+
+}  // namespace
+}  // namespace photon

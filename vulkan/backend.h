@@ -1,0 +1,81 @@
+// The Vulkan backend: the five stages as compute shaders (glsl/) over the shared core, one
+// command buffer and one submission per frame. Headless programs reach it through
+// createVulkanBackend(); a windowed viewer builds its own Context (with surface and swapchain
+// extensions), constructs the backend on it, records frames into its own command buffers with
+// recordFrame() and presents from accumulationBuffer().
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "buffer_plan.h"
+#include "context.h"
+#include "core/backend.h"
+#include "memory.h"
+#include "pipelines.h"
+
+namespace photon::vk {
+
+// Timestamps around the stages: before tracePhotons, then after each of the five.
+constexpr std::uint32_t kTimestampCount = 6;
+
+class VulkanBackend final : public Backend {
+public:
+    explicit VulkanBackend(std::shared_ptr<Context> context);
+    ~VulkanBackend() override;
+
+    std::string name() const override { return "vulkan"; }
+    std::string deviceName() const override { return context_->properties.deviceName; }
+
+    PhotonMaps readPhotonMaps() override;
+    std::vector<HitPoint> readHitPoints() override;
+    Image readFrame() override;
+
+    // Records a whole frame into `cmd`: its parameters, the stages and the barriers between them,
+    // and timestamps. Call prepare() first. The frame starts with a barrier against everything
+    // earlier on the queue and ends with accumulation written by a compute shader: the caller
+    // orders its own reads of it (COMPUTE_SHADER / SHADER_WRITE before them).
+    void recordFrame(VkCommandBuffer cmd, const FrameParams& params);
+
+    // The running mean: width × height vec4 of linear radiance, row by row from the top.
+    VkBuffer accumulationBuffer() const { return buffers_[BINDING_ACCUMULATION].handle(); }
+    const Context& context() const { return *context_; }
+
+protected:
+    void uploadScene(const Scene& scene) override;
+    void allocate(const PhotonBudget& budget, std::uint32_t width, std::uint32_t height) override;
+    FrameStats runFrame(const FrameParams& params) override;
+    Image readAccumulation() override;
+
+private:
+    // (Re)creates the buffer of `binding` if its size changed and points the descriptor at it.
+    void ensureBuffer(std::uint32_t binding, VkDeviceSize bytes);
+    Image readImage(std::uint32_t binding);
+    void recordBuildGrid(VkCommandBuffer cmd);
+
+    // Device, one-off copies, pipelines.
+    std::shared_ptr<Context> context_;  // shared with a viewer, if any; outlives everything below
+    Transfers transfers_;               // uploads and readbacks, waited for
+    Pipelines pipelines_;               // every shader, one descriptor set
+
+    // Buffers by binding number (shared/bindings.h), device-local.
+    Buffer buffers_[BINDING_COUNT];
+    BufferPlan plan_;            // their sizes and the scan's levels
+    std::uint32_t width_ = 0;    // image the frame buffers are sized for
+    std::uint32_t height_ = 0;
+
+    // The frame runFrame() submits.
+    struct Frame {
+        VkCommandPool pool = VK_NULL_HANDLE;      // owns cmd
+        VkCommandBuffer cmd = VK_NULL_HANDLE;     // re-recorded every frame
+        VkFence done = VK_NULL_HANDLE;            // signalled when the frame has run
+        VkQueryPool timestamps = VK_NULL_HANDLE;  // kTimestampCount timestamps around the stages
+        Buffer counters;                          // host-visible copy of the counters after the frame
+    } frame_;
+    std::uint32_t stored_[MAP_COUNT] = {};  // photons in each map after the last frame (up to capacity)
+};
+
+}  // namespace photon::vk

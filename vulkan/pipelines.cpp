@@ -1,0 +1,194 @@
+// Shader modules from the SPIR-V embedded at build time, the descriptor set layout, and the
+// compute pipelines.
+#include "pipelines.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include "check.h"
+#include "glsl/dispatch.h"
+#include "shared/bindings.h"
+
+namespace photon::vk {
+namespace spirv {
+#include "accumulate.spv.h"
+#include "gather.spv.h"
+#include "gridArgs.spv.h"
+#include "gridCount.spv.h"
+#include "gridScan.spv.h"
+#include "gridScanAdd.spv.h"
+#include "gridScatter.spv.h"
+#include "tracePhotons.spv.h"
+#include "tracePixels.spv.h"
+}  // namespace spirv
+
+namespace {
+
+struct ShaderCode {
+    const std::uint32_t* words;
+    std::size_t bytes;
+};
+
+template <std::size_t N>
+ShaderCode code(const std::uint32_t (&words)[N]) {
+    return {words, sizeof(words)};
+}
+
+ShaderCode shaderCode(Shader shader) {
+    switch (shader) {
+        case kTracePhotons: return code(spirv::tracePhotons);
+        case kGridArgs: return code(spirv::gridArgs);
+        case kGridCount: return code(spirv::gridCount);
+        case kGridScan: return code(spirv::gridScan);
+        case kGridScanAdd: return code(spirv::gridScanAdd);
+        case kGridScatter: return code(spirv::gridScatter);
+        case kTracePixels: return code(spirv::tracePixels);
+        case kGather: return code(spirv::gather);
+        case kAccumulate: return code(spirv::accumulate);
+        case kShaderCount: break;
+    }
+    return {nullptr, 0};
+}
+
+// Subgroup size squared: two subgroup scans then cover a workgroup (gridScan.comp handles any
+// other size too). A multiple of the largest subgroup size, as full subgroups require.
+std::uint32_t chooseScanGroupSize(const Context& context) {
+    std::uint32_t s = context.maxSubgroupSize;
+    std::uint32_t limit = std::min(context.properties.limits.maxComputeWorkGroupInvocations,
+                                   context.properties.limits.maxComputeWorkGroupSize[0]);
+    std::uint32_t size = std::min(context.subgroupSize * context.subgroupSize, limit);
+    return std::max(s, size / s * s);
+}
+
+}  // namespace
+
+GroupCount groupsFor(std::uint64_t items, std::uint32_t groupSize) {
+    std::uint64_t groups = (items + groupSize - 1) / groupSize;
+    GroupCount count;
+    count.x = std::uint32_t(std::min<std::uint64_t>(groups, MAX_GROUPS_X));
+    count.y = count.x == 0 ? 0 : std::uint32_t((groups + count.x - 1) / count.x);
+    return count;
+}
+
+void dispatch(VkCommandBuffer cmd, const Pipelines& pipelines, Shader shader, std::uint64_t items,
+              std::uint32_t groupSize) {
+    GroupCount groups = groupsFor(items, groupSize);
+    if (groups.x == 0) {
+        return;
+    }
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines.pipeline[shader]);
+    vkCmdDispatch(cmd, groups.x, groups.y, 1);
+}
+
+Pipelines::Pipelines(const Context& context) : context_(context) {
+    VkDevice device = context.device;
+
+    std::vector<VkDescriptorSetLayoutBinding> bindings(BINDING_COUNT);
+    for (std::uint32_t b = 0; b < BINDING_COUNT; ++b) {
+        bindings[b].binding = b;
+        bindings[b].descriptorType =
+            b == BINDING_PARAMS ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        bindings[b].descriptorCount = 1;
+        bindings[b].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+    }
+    VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    setInfo.bindingCount = BINDING_COUNT;
+    setInfo.pBindings = bindings.data();
+    VK_CHECK(vkCreateDescriptorSetLayout(device, &setInfo, nullptr, &setLayout));
+
+    VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, kPushConstantBytes};
+    VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    layoutInfo.setLayoutCount = 1;
+    layoutInfo.pSetLayouts = &setLayout;
+    layoutInfo.pushConstantRangeCount = 1;
+    layoutInfo.pPushConstantRanges = &push;
+    VK_CHECK(vkCreatePipelineLayout(device, &layoutInfo, nullptr, &layout));
+
+    VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+                                    {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, BINDING_COUNT - 1}};
+    VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    poolInfo.maxSets = 1;
+    poolInfo.poolSizeCount = 2;
+    poolInfo.pPoolSizes = sizes;
+    VK_CHECK(vkCreateDescriptorPool(device, &poolInfo, nullptr, &descriptorPool));
+    VkDescriptorSetAllocateInfo allocation{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    allocation.descriptorPool = descriptorPool;
+    allocation.descriptorSetCount = 1;
+    allocation.pSetLayouts = &setLayout;
+    VK_CHECK(vkAllocateDescriptorSets(device, &allocation, &set));
+
+    // The scan's workgroup size is specialization constant 0; the other shaders fix theirs.
+    scanGroupSize = chooseScanGroupSize(context);
+    VkSpecializationMapEntry entry{0, 0, sizeof(std::uint32_t)};
+    VkSpecializationInfo scanSpecialization{1, &entry, sizeof(std::uint32_t), &scanGroupSize};
+    for (std::uint32_t s = 0; s < kShaderCount; ++s) {
+        if (s == kGather) {
+            continue;
+        }
+        bool scan = s == kGridScan || s == kGridScanAdd;
+        // gridScan numbers its invocations by subgroup, which needs full subgroups.
+        VkPipelineShaderStageCreateFlags flags = s == kGridScan ? VK_PIPELINE_SHADER_STAGE_CREATE_REQUIRE_FULL_SUBGROUPS_BIT : 0;
+        pipeline[s] = create(Shader(s), scan ? &scanSpecialization : nullptr, flags);
+    }
+}
+
+VkPipeline Pipelines::create(Shader shader, const VkSpecializationInfo* specialization,
+                             VkPipelineShaderStageCreateFlags flags) {
+    ShaderCode code = shaderCode(shader);
+    VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+    moduleInfo.codeSize = code.bytes;
+    moduleInfo.pCode = code.words;
+    VkShaderModule module = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateShaderModule(context_.device, &moduleInfo, nullptr, &module));
+    VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    info.stage.flags = flags;
+    info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    info.stage.module = module;
+    info.stage.pName = "main";
+    info.stage.pSpecializationInfo = specialization;
+    info.layout = layout;
+    VkPipeline created = VK_NULL_HANDLE;
+    VkResult result = vkCreateComputePipelines(context_.device, VK_NULL_HANDLE, 1, &info, nullptr, &created);
+    vkDestroyShaderModule(context_.device, module, nullptr);
+    VK_CHECK(result);
+    return created;
+}
+
+VkPipeline Pipelines::gather(std::uint32_t estimator, std::uint32_t globalMode) {
+    std::uint32_t variant = (estimator & 3u) * 2u + (globalMode & 1u);
+    if (gatherVariants_[variant] == VK_NULL_HANDLE) {
+        std::uint32_t constants[2] = {estimator, globalMode};
+        VkSpecializationMapEntry entries[2] = {{1, 0, sizeof(std::uint32_t)}, {2, sizeof(std::uint32_t), sizeof(std::uint32_t)}};
+        VkSpecializationInfo specialization{2, entries, sizeof(constants), constants};
+        gatherVariants_[variant] = create(kGather, &specialization, 0);
+    }
+    return gatherVariants_[variant];
+}
+
+Pipelines::~Pipelines() {
+    VkDevice device = context_.device;
+    for (VkPipeline p : pipeline) {
+        vkDestroyPipeline(device, p, nullptr);
+    }
+    for (VkPipeline p : gatherVariants_) {
+        vkDestroyPipeline(device, p, nullptr);
+    }
+    vkDestroyDescriptorPool(device, descriptorPool, nullptr);
+    vkDestroyPipelineLayout(device, layout, nullptr);
+    vkDestroyDescriptorSetLayout(device, setLayout, nullptr);
+}
+
+void Pipelines::writeDescriptor(std::uint32_t binding, VkBuffer buffer, VkDeviceSize size) {
+    VkDescriptorBufferInfo info{buffer, 0, size};
+    VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    write.dstSet = set;
+    write.dstBinding = binding;
+    write.descriptorCount = 1;
+    write.descriptorType = binding == BINDING_PARAMS ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    write.pBufferInfo = &info;
+    vkUpdateDescriptorSets(context_.device, 1, &write, 0, nullptr);
+}
+
+}  // namespace photon::vk

@@ -1,0 +1,69 @@
+// The compute pipelines, one per shader of glsl/, all over one pipeline layout: one descriptor set
+// holding every buffer of shared/bindings.h, and a few words of push constants. Built once.
+#pragma once
+
+#include <cstdint>
+
+#include <vulkan/vulkan.h>
+
+#include "context.h"
+
+namespace photon::vk {
+
+enum Shader : std::uint32_t {
+    kTracePhotons,  // stage tracePhotons
+    kGridArgs,      // stage buildGrid: group counts of the count and scatter passes
+    kGridCount,     //   cell keys and photons per cell
+    kGridScan,      //   one level of the exclusive scan of the counts
+    kGridScanAdd,   //   adds the scanned block totals back down a level
+    kGridScatter,   //   photons into cell order
+    kTracePixels,   // stage tracePixels
+    kGather,        // stage gather
+    kAccumulate,    // stage accumulate
+    kShaderCount
+};
+
+constexpr std::uint32_t kPushConstantBytes = 32;
+
+// Workgroups for `items` invocations in groups of `groupSize`, wrapped into y beyond
+// MAX_GROUPS_X groups as the shaders expect (glsl/dispatch.h).
+struct GroupCount {
+    std::uint32_t x = 0;
+    std::uint32_t y = 0;
+};
+GroupCount groupsFor(std::uint64_t items, std::uint32_t groupSize);
+
+// Binds `shader` and dispatches `items` invocations (rounded up to whole workgroups).
+void dispatch(VkCommandBuffer cmd, const class Pipelines& pipelines, Shader shader, std::uint64_t items,
+              std::uint32_t groupSize);
+
+class Pipelines {
+public:
+    explicit Pipelines(const Context& context);
+    ~Pipelines();
+    Pipelines(const Pipelines&) = delete;
+    Pipelines& operator=(const Pipelines&) = delete;
+
+    // Points binding `binding` of the descriptor set at a whole buffer. Only between frames.
+    void writeDescriptor(std::uint32_t binding, VkBuffer buffer, VkDeviceSize size);
+
+    // The gather pipeline specialized for an ESTIMATOR_* and a GLOBAL_* mode, built on first use.
+    VkPipeline gather(std::uint32_t estimator, std::uint32_t globalMode);
+
+    VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;  // BINDING_COUNT buffers: params uniform, the rest storage
+    VkPipelineLayout layout = VK_NULL_HANDLE;          // the set, then kPushConstantBytes of push constants
+    VkDescriptorPool descriptorPool = VK_NULL_HANDLE;
+    VkDescriptorSet set = VK_NULL_HANDLE;              // the one set every dispatch uses
+    VkPipeline pipeline[kShaderCount] = {};            // by Shader; kGather: see gather()
+    std::uint32_t scanGroupSize = 0;                   // workgroup of gridScan/gridScanAdd: subgroup size²,
+                                                       // within the device's limits
+
+private:
+    VkPipeline create(Shader shader, const VkSpecializationInfo* specialization, VkPipelineShaderStageCreateFlags flags);
+
+    const Context& context_;
+    static constexpr std::uint32_t kGatherVariants = 8;  // 4 estimators × 2 global modes
+    VkPipeline gatherVariants_[kGatherVariants] = {};
+};
+
+}  // namespace photon::vk

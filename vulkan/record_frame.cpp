@@ -1,0 +1,106 @@
+// One frame as commands: the parameters, the five stages in order with a barrier between each
+// stage and the next, and a timestamp after each.
+#include "backend.h"
+#include "glsl/dispatch.h"
+
+namespace photon::vk {
+
+void VulkanBackend::recordFrame(VkCommandBuffer cmd, const FrameParams& params) {
+    Pipelines& p = pipelines_;
+    bool timed = context_->timestampValidBits > 0;
+    auto timestamp = [&](std::uint32_t index) {
+        if (timed) {
+            vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, frame_.timestamps, index);
+        }
+    };
+    if (timed) {
+        vkCmdResetQueryPool(cmd, frame_.timestamps, 0, kTimestampCount);
+    }
+    timestamp(0);
+
+    // The previous frame (and any readback) is done with the parameters and counters before this
+    // frame rewrites them.
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                  VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                  VK_ACCESS_TRANSFER_WRITE_BIT);
+    vkCmdUpdateBuffer(cmd, buffers_[BINDING_PARAMS].handle(), 0, sizeof(FrameParams), &params);
+    vkCmdFillBuffer(cmd, buffers_[BINDING_COUNTERS].handle(), 0, COUNTER_COUNT * sizeof(std::uint32_t), 0u);
+    vkCmdFillBuffer(cmd, buffers_[BINDING_CELL_COUNTS].handle(), 0, VK_WHOLE_SIZE, 0u);
+    // The parameters and the cleared counters are in place before any stage reads them.
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                  VK_ACCESS_UNIFORM_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layout, 0, 1, &p.set, 0, nullptr);
+
+    // tracePhotons: one invocation per path of both passes.
+    dispatch(cmd, p, kTracePhotons, std::uint64_t(params.globalPaths) + params.causticPaths, GROUP_SIZE);
+    // The photons and their counters are written before the grid build reads them.
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+    timestamp(1);
+
+    recordBuildGrid(cmd);
+    timestamp(2);
+
+    // tracePixels: one invocation per pixel.
+    dispatch(cmd, p, kTracePixels, std::uint64_t(params.width) * params.height, GROUP_SIZE);
+    // The hit points are written before gather reads them.
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+    timestamp(3);
+
+    // gather: one invocation per pixel, with the pipeline of the frame's estimator and mode.
+    GroupCount pixelGroups = groupsFor(std::uint64_t(params.width) * params.height, GROUP_SIZE);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_.gather(params.estimator, params.globalMode));
+    vkCmdDispatch(cmd, pixelGroups.x, pixelGroups.y, 1);
+    // This frame's radiance is written before accumulate reads it.
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+    timestamp(4);
+
+    // accumulate: one invocation per pixel.
+    dispatch(cmd, p, kAccumulate, std::uint64_t(params.width) * params.height, GROUP_SIZE);
+    timestamp(5);
+}
+
+// buildGrid: a counting sort of each map's photons by cell. The count and scatter passes run over
+// the photons actually stored, through group counts that gridArgs writes from the counters.
+void VulkanBackend::recordBuildGrid(VkCommandBuffer cmd) {
+    const Pipelines& p = pipelines_;
+    VkBuffer counters = buffers_[BINDING_COUNTERS].handle();
+    auto dispatchPerMap = [&](Shader shader) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline[shader]);
+        for (std::uint32_t map = 0; map < MAP_COUNT; ++map) {
+            vkCmdPushConstants(cmd, p.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(map), &map);
+            vkCmdDispatchIndirect(cmd, counters, (GRID_ARGS + 3 * map) * sizeof(std::uint32_t));
+        }
+    };
+
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline[kGridArgs]);
+    vkCmdDispatch(cmd, 1, 1, 1);
+    // The group counts are written before the indirect dispatches read them.
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                  VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT);
+
+    dispatchPerMap(kGridCount);
+    // Every photon's key and its cell's count are in place before the scan reads the counts.
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+
+    recordScan(cmd, p, plan_.scan);
+
+    // The scan has read the counts before they are cleared to become the scatter's cursors.
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                  VK_ACCESS_TRANSFER_WRITE_BIT);
+    vkCmdFillBuffer(cmd, buffers_[BINDING_CELL_COUNTS].handle(), 0, VK_WHOLE_SIZE, 0u);
+    // The cursors are zero before the scatter advances them.
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+
+    dispatchPerMap(kGridScatter);
+    // The photon maps are complete before gather reads them.
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+}
+
+}  // namespace photon::vk

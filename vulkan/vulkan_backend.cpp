@@ -1,0 +1,34 @@
+// createVulkanBackend() and vulkanDeviceCount(): the entry points apps/backends.cpp uses.
+#include "vulkan_backend.h"
+
+#include "backend.h"
+#include "context.h"
+
+namespace photon {
+
+std::unique_ptr<Backend> createVulkanBackend(const BackendOptions& options) {
+    vk::ContextOptions contextOptions;
+    contextOptions.device = options.device;
+    contextOptions.validation = options.validation;
+    return std::make_unique<vk::VulkanBackend>(std::make_shared<vk::Context>(contextOptions));
+}
+
+int vulkanDeviceCount() {
+    try {
+        VkInstance instance = vk::createBareInstance();
+        int count = 0;
+        try {
+            for (const vk::DeviceCandidate& c : vk::listDevices(instance, VK_NULL_HANDLE, {})) {
+                count += c.unsuitable.empty() ? 1 : 0;
+            }
+        } catch (...) {
+            count = 0;
+        }
+        vkDestroyInstance(instance, nullptr);
+        return count;
+    } catch (...) {
+        return 0;
+    }
+}
+
+}  // namespace photon
