@@ -7,7 +7,9 @@
 
 PH_NAMESPACE_BEGIN
 
-PH_CONST uint GROUP_SIZE = 64u;       // invocations per workgroup of the per-photon and per-pixel stages
+PH_CONST uint GROUP_SIZE = 64u;       // invocations per workgroup of the per-photon stages
+PH_CONST uint PIXEL_TILE_X = 8u;      // the per-pixel stages run in tiles of 8 × 8 pixels: the
+PH_CONST uint PIXEL_TILE_Y = 8u;      // pixels of a subgroup lie close, and so do their cells
 PH_CONST uint MAX_GROUPS_X = 65535u;  // the smallest maxComputeWorkGroupCount[0] Vulkan allows;
                                       // larger dispatches wrap into y
 PH_CONST uint SCAN_ITEMS = 4u;        // cells each invocation of the scan sums in sequence
@@ -26,6 +28,14 @@ uint workgroupIndex() { return gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGr
 // Linear index of this invocation, in workgroups of GROUP_SIZE. (Not gl_WorkGroupSize: this file
 // comes before the shader's local_size declaration, and glslang silently reads 1 there.)
 uint invocationIndex() { return workgroupIndex() * GROUP_SIZE + gl_LocalInvocationID.x; }
+
+// This invocation's pixel in a dispatch of PIXEL_TILE_X × PIXEL_TILE_Y tiles over the image; false
+// for invocations of the border tiles that fall outside it.
+bool pixelOfInvocation(out uint pixel) {
+    uvec2 p = gl_GlobalInvocationID.xy;
+    pixel = p.y * params.width + p.x;
+    return p.x < params.width && p.y < params.height;
+}
 
 // Photons a map holds this frame: those tracePhotons counted, up to the map's capacity.
 uint storedPhotons(uint map) {

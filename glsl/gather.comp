@@ -3,17 +3,19 @@
 // and the global mode are specialization constants, so each pipeline variant carries only its
 // own estimator (the k-nearest heap alone would otherwise burden every variant).
 #extension GL_GOOGLE_include_directive : require
+#define PH_PHOTON_MAPS_READONLY
+#define PH_HIT_POINTS_READONLY
 #include "shared/bindings.h"
 #include "shared/gather.h"
 #include "glsl/dispatch.h"
 
-layout(local_size_x = GROUP_SIZE) in;
+layout(local_size_x = PIXEL_TILE_X, local_size_y = PIXEL_TILE_Y) in;
 layout(constant_id = 1) const uint ESTIMATOR = 1u;    // ESTIMATOR_*
 layout(constant_id = 2) const uint GLOBAL_MODE = 0u;  // GLOBAL_*
 
 void main() {
-    uint pixel = invocationIndex();
-    if (pixel >= params.width * params.height) {
+    uint pixel;
+    if (!pixelOfInvocation(pixel)) {
         return;
     }
     frameRadiance[pixel] = vec4(gatherPixel(pixel, ESTIMATOR, GLOBAL_MODE), 1.0f);

@@ -5,11 +5,11 @@
 #include "shared/eye_trace.h"
 #include "glsl/dispatch.h"
 
-layout(local_size_x = GROUP_SIZE) in;
+layout(local_size_x = PIXEL_TILE_X, local_size_y = PIXEL_TILE_Y) in;
 
 void main() {
-    uint pixel = invocationIndex();
-    if (pixel >= params.width * params.height) {
+    uint pixel;
+    if (!pixelOfInvocation(pixel)) {
         return;
     }
     hitPoints[pixel] = tracePixel(pixel);

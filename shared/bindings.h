@@ -30,6 +30,19 @@ PH_CONST uint BINDING_COUNT = 17u;
 PH_NAMESPACE_END
 
 #ifndef __cplusplus
+// A shader that only reads the photon maps or the hit points says so by defining
+// PH_PHOTON_MAPS_READONLY or PH_HIT_POINTS_READONLY before including this file: drivers can then
+// serve those loads from their read-only caches.
+#ifdef PH_PHOTON_MAPS_READONLY
+#define PH_MAPS_ACCESS readonly
+#else
+#define PH_MAPS_ACCESS
+#endif
+#ifdef PH_HIT_POINTS_READONLY
+#define PH_HITS_ACCESS readonly
+#else
+#define PH_HITS_ACCESS
+#endif
 layout(std140, set = 0, binding = BINDING_PARAMS) uniform ParamsBlock { FrameParams params; };
 layout(std430, set = 0, binding = BINDING_SPHERES) readonly restrict buffer SphereBuffer { Sphere spheres[]; };
 layout(std430, set = 0, binding = BINDING_PLANES) readonly restrict buffer PlaneBuffer { Plane planes[]; };
@@ -40,11 +53,11 @@ layout(std430, set = 0, binding = BINDING_LIGHTS) readonly restrict buffer Light
 layout(std430, set = 0, binding = BINDING_TARGETS) readonly restrict buffer TargetBuffer { CausticTarget targets[]; };
 layout(std430, set = 0, binding = BINDING_PHOTONS) restrict buffer PhotonBuffer { Photon photons[]; };
 layout(std430, set = 0, binding = BINDING_PHOTON_KEYS) restrict buffer PhotonKeyBuffer { uint photonKeys[]; };
-layout(std430, set = 0, binding = BINDING_SORTED_PHOTONS) restrict buffer SortedPhotonBuffer { Photon sortedPhotons[]; };
+layout(std430, set = 0, binding = BINDING_SORTED_PHOTONS) PH_MAPS_ACCESS restrict buffer SortedPhotonBuffer { Photon sortedPhotons[]; };
 layout(std430, set = 0, binding = BINDING_CELL_COUNTS) restrict buffer CellCountBuffer { uint cellCounts[]; };
-layout(std430, set = 0, binding = BINDING_CELL_START) restrict buffer CellStartBuffer { uint cellStart[]; };
+layout(std430, set = 0, binding = BINDING_CELL_START) PH_MAPS_ACCESS restrict buffer CellStartBuffer { uint cellStart[]; };
 layout(std430, set = 0, binding = BINDING_COUNTERS) restrict buffer CounterBuffer { uint counters[]; };
-layout(std430, set = 0, binding = BINDING_HIT_POINTS) restrict buffer HitPointBuffer { HitPoint hitPoints[]; };
+layout(std430, set = 0, binding = BINDING_HIT_POINTS) PH_HITS_ACCESS restrict buffer HitPointBuffer { HitPoint hitPoints[]; };
 layout(std430, set = 0, binding = BINDING_FRAME) restrict buffer FrameBuffer { vec4 frameRadiance[]; };
 layout(std430, set = 0, binding = BINDING_ACCUMULATION) restrict buffer AccumulationBuffer { vec4 accumulation[]; };
 #else

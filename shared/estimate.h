@@ -128,26 +128,21 @@ PH_FN uint subsampleStart(uint begin, uint stride, float u) { return begin + min
 // to the next cell: on SIMD hardware the threads of a warp then drift through their cells
 // independently instead of waiting for each other at every cell boundary (the "if-if" loop of
 // Aila & Laine, "Understanding the Efficiency of Ray Traversal on GPUs", HPG 2009).
-// One photon's share of a radius estimate at s: zero outside the disc. Accumulate the shares,
-// times each cell's subsampling stride, and finish with finishRadiusEstimate.
-PH_FN vec3 radiusContribution(PH_IN(Shading) s, PH_IN(Photon) p, float r2, float thickness, uint kernel) {
+// Adds one photon's share to a radius estimate at s if it lies in the disc. (Adding in place, not
+// returning zero for the many photons outside: x + 0 is not free under IEEE rules.)
+PH_FN void addRadiusContribution(PH_INOUT(vec3) sum, PH_IN(Shading) s, PH_IN(Photon) p, float r2, float invR2,
+                                 float thickness, uint kernel) {
     vec3 d = p.position - s.position;
     float d2 = dot(d, d);
     if (d2 < r2 && abs(dot(d, s.normal)) <= thickness) {
-        return photonReflectance(s, p.incoming) * p.power * kernelProfile(kernel, d2 / r2);
+        sum += photonReflectance(s, p.incoming) * p.power * kernelProfile(kernel, d2 * invR2);
     }
-    return vec3(0.0f);
 }
-
-PH_FN vec3 finishRadiusEstimate(PH_IN(Shading) s, vec3 sum, float radius, uint kernel) {
-    return sum * estimateScale(s) * (kernelNorm(kernel) * INV_PI / (radius * radius));
-}
-
-PH_FN float discThickness(float radius) { return DISC_THICKNESS * radius; }
 
 PH_FN vec3 estimateRadius(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float radius, uint kernel, float u) {
     float r2 = radius * radius;
-    float thickness = discThickness(radius);
+    float invR2 = 1.0f / r2;
+    float thickness = DISC_THICKNESS * radius;
     uint budget = BUF(params).gatherBudget;
     vec3 sum = vec3(0.0f);
     vec3 cellSum = vec3(0.0f);
@@ -169,10 +164,10 @@ PH_FN vec3 estimateRadius(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, fl
             i = subsampleStart(begin, stride, u);
             continue;
         }
-        cellSum += radiusContribution(s, BUF(sortedPhotons)[i], r2, thickness, kernel);
+        addRadiusContribution(cellSum, s, BUF(sortedPhotons)[i], r2, invR2, thickness, kernel);
         i += stride;
     }
-    return finishRadiusEstimate(s, sum, radius, kernel);
+    return sum * estimateScale(s) * (kernelNorm(kernel) * INV_PI * invR2);
 }
 
 // The seed's estimator: every photon of the cell holding x, spread over the cell's cross-section.

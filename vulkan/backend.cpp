@@ -50,6 +50,7 @@ void VulkanBackend::ensureBuffer(std::uint32_t binding, VkDeviceSize bytes) {
     buffer = Buffer();
     buffer = Buffer(*context_, bytes, bufferUsage(binding), MemoryUse::Device);
     pipelines_.writeDescriptor(binding, buffer.handle(), bytes);
+    cellCountsDirty_ = cellCountsDirty_ || binding == BINDING_CELL_COUNTS;
 }
 
 // Scene arrays to their bindings; an empty array still gets a buffer of one zeroed element.

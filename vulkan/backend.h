@@ -75,6 +75,8 @@ private:
         VkQueryPool timestamps = VK_NULL_HANDLE;  // kTimestampCount timestamps around the stages
         Buffer counters;                          // host-visible copy of the counters after the frame
     } frame_;
+    bool cellCountsDirty_ = true;  // a new cell-count buffer must be zeroed once; after that the
+                                   // scatter leaves it at zero every frame
     std::uint32_t stored_[MAP_COUNT] = {};  // photons in each map after the last frame (up to capacity)
 };
 

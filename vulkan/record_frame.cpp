@@ -25,7 +25,10 @@ void VulkanBackend::recordFrame(VkCommandBuffer cmd, const FrameParams& params) 
                   VK_ACCESS_TRANSFER_WRITE_BIT);
     vkCmdUpdateBuffer(cmd, buffers_[BINDING_PARAMS].handle(), 0, sizeof(FrameParams), &params);
     vkCmdFillBuffer(cmd, buffers_[BINDING_COUNTERS].handle(), 0, COUNTER_COUNT * sizeof(std::uint32_t), 0u);
-    vkCmdFillBuffer(cmd, buffers_[BINDING_CELL_COUNTS].handle(), 0, VK_WHOLE_SIZE, 0u);
+    if (cellCountsDirty_) {
+        vkCmdFillBuffer(cmd, buffers_[BINDING_CELL_COUNTS].handle(), 0, VK_WHOLE_SIZE, 0u);
+        cellCountsDirty_ = false;
+    }
     // The parameters and the cleared counters are in place before any stage reads them.
     memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                   VK_ACCESS_UNIFORM_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
@@ -41,24 +44,27 @@ void VulkanBackend::recordFrame(VkCommandBuffer cmd, const FrameParams& params) 
     recordBuildGrid(cmd);
     timestamp(2);
 
-    // tracePixels: one invocation per pixel.
-    dispatch(cmd, p, kTracePixels, std::uint64_t(params.width) * params.height, GROUP_SIZE);
+    // tracePixels: one invocation per pixel, in tiles.
+    std::uint32_t tilesX = (params.width + PIXEL_TILE_X - 1) / PIXEL_TILE_X;
+    std::uint32_t tilesY = (params.height + PIXEL_TILE_Y - 1) / PIXEL_TILE_Y;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline[kTracePixels]);
+    vkCmdDispatch(cmd, tilesX, tilesY, 1);
     // The hit points are written before gather reads them.
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
     timestamp(3);
 
     // gather: one invocation per pixel, with the pipeline of the frame's estimator and mode.
-    GroupCount pixelGroups = groupsFor(std::uint64_t(params.width) * params.height, GROUP_SIZE);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_.gather(params.estimator, params.globalMode));
-    vkCmdDispatch(cmd, pixelGroups.x, pixelGroups.y, 1);
+    vkCmdDispatch(cmd, tilesX, tilesY, 1);
     // This frame's radiance is written before accumulate reads it.
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
     timestamp(4);
 
     // accumulate: one invocation per pixel.
-    dispatch(cmd, p, kAccumulate, std::uint64_t(params.width) * params.height, GROUP_SIZE);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline[kAccumulate]);
+    vkCmdDispatch(cmd, tilesX, tilesY, 1);
     timestamp(5);
 }
 
@@ -88,14 +94,10 @@ void VulkanBackend::recordBuildGrid(VkCommandBuffer cmd) {
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
 
     recordScan(cmd, p, plan_.scan);
-
-    // The scan has read the counts before they are cleared to become the scatter's cursors.
-    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                  VK_ACCESS_TRANSFER_WRITE_BIT);
-    vkCmdFillBuffer(cmd, buffers_[BINDING_CELL_COUNTS].handle(), 0, VK_WHOLE_SIZE, 0u);
-    // The cursors are zero before the scatter advances them.
-    memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+    // The cell starts are written, and the scan has read the counts, before the scatter reads the
+    // starts and counts the counts back down.
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
 
     dispatchPerMap(kGridScatter);
     // The photon maps are complete before gather reads them.

@@ -24,7 +24,7 @@ for step in "$@"; do
         summary+=("$tool: exit $? $(grep -E 'ERROR SUMMARY|RACECHECK SUMMARY' "$out/$tool.log" | tr '\n' ' ')")
       done ;;
     bench)
-      $bin/photon-bench --backends cuda --resolutions 1920x1080,3840x2160 --photons 1000000 --frames 50 ${VARY:-} \
+      $bin/photon-bench --backends ${BACKENDS:-cuda} --resolutions 1920x1080,3840x2160 --photons 1000000 --frames 50 ${VARY:-} \
         --json "$out/bench.json" --csv "$out/bench.csv" | tee "$out/bench.log" ;;
     series)
       $bin/photon-bench --backends cuda,cpu --cpu-frames 1 --resolutions 640x480,800x600,1024x768,1280x720,1920x1080,2560x1600,3840x2400 \
@@ -33,7 +33,7 @@ for step in "$@"; do
       $bin/photon-bench --backends cuda --grid-sweep 1000000,2000000,4000000,8000000,16000000 --frames 30 \
         --json "$out/grid.json" | tee "$out/grid.log" ;;
     launch)
-      $bin/photon-bench --backends cuda --resolutions 1920x1080 --photons 1000000 --launch-sweep --frames 30 \
+      $bin/photon-bench --backends cuda --resolutions 1920x1080 --photons 1000000 --launch-sweep --frames 30 ${VARY:-} \
         --json "$out/launch.json" | tee "$out/launch.log" ;;
     startup)
       for i in 1 2 3; do
