@@ -1,0 +1,43 @@
+// Every shipped scene renders on the CPU reference without NaN or Inf, and is not black. (The GPU
+// backends' tests render them too and compare with the CPU.)
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "apps/backends.h"
+#include "core/scene_loader.h"
+#include "test_util.h"
+
+namespace photon {
+namespace {
+
+TEST(ShippedScenes, RenderFiniteAndLit) {
+    int scenes = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(test::scenesDir())) {
+        if (entry.path().extension() != ".json") {
+            continue;
+        }
+        SCOPED_TRACE(entry.path().string());
+        Scene scene = loadSceneFile(entry.path().string());
+        for (Estimator e : {Estimator::Radius, Estimator::Knn, Estimator::Cell, Estimator::Progressive}) {
+            RenderSettings s = scene.render;
+            s.width = 64;
+            s.height = 48;
+            s.photons = 20000;
+            s.estimator = e;
+            auto backend = createBackend("cpu");
+            backend->setScene(scene);
+            backend->setSettings(s);
+            backend->renderFrame();
+            backend->renderFrame();
+            Image image = backend->image();
+            EXPECT_TRUE(allFinite(image)) << toString(e);
+            EXPECT_GT(meanLuminance(image), 0.0) << toString(e);
+        }
+        scenes += 1;
+    }
+    EXPECT_GE(scenes, 5);
+}
+
+}  // namespace
+}  // namespace photon
