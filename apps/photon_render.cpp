@@ -79,9 +79,10 @@ void writeStats(const std::string& path, Backend& backend, const std::vector<Sta
     const char* kMapNames[] = {"global", "caustic"};
     for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
         GridStats g = gridStats(maps.cellStart[m]);
+        nlohmann::json capacity = last.capacity[m] == NONE ? nlohmann::json() : nlohmann::json(last.capacity[m]);
         j["photons"][kMapNames[m]] = {{"emitted_paths", last.emitted[m]},
                                        {"stored", last.stored[m]},
-                                       {"capacity", last.capacity[m]},
+                                       {"capacity", capacity},
                                        {"radius", backend.lastFrameParams().grids[m].radius}};
         j["grid"][kMapNames[m]] = {{"kind", toString(s.grid)},
                                     {"cells", g.cells},

@@ -84,23 +84,35 @@ void Backend::prepare() {
 }
 
 void Backend::renderFrame() {
-    for (int attempt = 0;; ++attempt) {
-        prepare();
-        params_ = makeFrameParams(scene_, camera_, settings_, budget_, frameIndex_, accumulated_);
-        stats_ = runFrame(params_);
-        bool dropped = growPhotonMaps();
-        // A first frame that lost photons runs again with room for them: it replaces the
-        // accumulation, so nothing of the short frame remains. Later frames keep what they have.
-        if (!dropped || accumulated_ > 0 || attempt > 0) {
-            if (dropped && !warnedDropped_) {
-                std::fprintf(stderr, "photon: a photon map overflowed; photons were dropped and it was grown\n");
-                warnedDropped_ = true;
-            }
+    // A first frame that lost photons runs again with room for them: it replaces the
+    // accumulation, so nothing of the short frame remains. Later frames keep what they have.
+    for (bool first = true;; first = false) {
+        const FrameParams& params = beginFrame();
+        if (endFrame(runFrame(params), first)) {
             break;
         }
     }
+}
+
+const FrameParams& Backend::beginFrame() {
+    prepare();
+    params_ = makeFrameParams(scene_, camera_, settings_, budget_, frameIndex_, accumulated_);
+    return params_;
+}
+
+bool Backend::endFrame(const FrameStats& stats, bool mayRepeat) {
+    stats_ = stats;
+    bool dropped = growPhotonMaps();
+    if (dropped && accumulated_ == 0 && mayRepeat) {
+        return false;
+    }
+    if (dropped && !warnedDropped_) {
+        std::fprintf(stderr, "photon: a photon map overflowed; photons were dropped and it was grown\n");
+        warnedDropped_ = true;
+    }
     frameIndex_ += 1;
     accumulated_ += 1;
+    return true;
 }
 
 bool Backend::growPhotonMaps() {
@@ -108,7 +120,7 @@ bool Backend::growPhotonMaps() {
     for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
         std::uint32_t stored = stats_.stored[m];
         std::uint32_t capacity = stats_.capacity[m];
-        if (capacity == 0 || double(stored) <= 0.8 * double(capacity)) {
+        if (capacity == NONE || double(stored) <= 0.8 * double(capacity)) {
             continue;
         }
         dropped = dropped || stored > capacity;

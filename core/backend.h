@@ -36,7 +36,7 @@ struct FrameStats {
     StageTimes ms;
     std::uint32_t emitted[MAP_COUNT] = {};   // paths of the global and the caustic pass
     std::uint32_t stored[MAP_COUNT] = {};    // photons that reached each map
-    std::uint32_t capacity[MAP_COUNT] = {};  // room in each map (0: unbounded); photons beyond it were dropped
+    std::uint32_t capacity[MAP_COUNT] = {};  // room in each map (NONE: unbounded); photons beyond it were dropped
 };
 
 // A readback of both photon maps: each map's photons in cell order, and its cell ranges
@@ -78,6 +78,15 @@ public:
     // (memory, binding sizes) first and throws InputError if the request cannot fit.
     void prepare();
     void renderFrame();
+
+    // A frame that the caller records and submits itself (the windowed viewer, through
+    // vk::VulkanBackend::recordFrame): beginFrame() prepares and returns its parameters;
+    // endFrame() takes its stats once it has run, grows the photon maps as renderFrame() does and
+    // counts the frame. It returns false, without counting, for a first frame that lost photons:
+    // the next frame repeats it with room for them (only if mayRepeat). renderFrame() is exactly
+    // beginFrame(), runFrame(), endFrame(). Change nothing between the two calls.
+    const FrameParams& beginFrame();
+    bool endFrame(const FrameStats& stats, bool mayRepeat = true);
 
     // The mean of the frames rendered since the last reset (linear radiance).
     Image image();

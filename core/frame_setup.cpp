@@ -16,9 +16,11 @@ std::uint32_t nextPowerOfTwo(std::uint64_t n) {
     return static_cast<std::uint32_t>(std::min<std::uint64_t>(p, 1u << 30));
 }
 
+// Whether any surface reflects or refracts specularly (mirror, glass, a mirror coat): only then
+// can a photon path be a caustic one.
 bool anySpecular(const Scene& scene) {
     return std::any_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) {
-        return m.type == MATERIAL_MIRROR || m.type == MATERIAL_GLASS;
+        return m.type == MATERIAL_MIRROR || m.type == MATERIAL_GLASS || m.type == MATERIAL_REFLECTIVE;
     });
 }
 

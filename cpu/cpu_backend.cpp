@@ -91,7 +91,7 @@ protected:
         stats.emitted[MAP_CAUSTIC] = params.causticPaths;
         for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
             stats.stored[m] = static_cast<std::uint32_t>(traced_[m].size());
-            stats.capacity[m] = 0;  // unbounded: the CPU appends to growing arrays
+            stats.capacity[m] = NONE;  // unbounded: the CPU appends to growing arrays
         }
         return stats;
     }
@@ -110,6 +110,7 @@ private:
         b.lights = scene_.lights.data();
         b.targets = scene_.targets.data();
         b.photons = nullptr;  // the CPU appends per chunk instead
+        b.compactPhotons = nullptr;
         b.photonKeys = nullptr;
         b.cellCounts = nullptr;
         b.cellStart = cellStart_.data();
