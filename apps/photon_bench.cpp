@@ -191,6 +191,14 @@ void sweepLaunchShapes([[maybe_unused]] Backend& backend, [[maybe_unused]] const
 #endif
 }
 
+void setCompactPhotons([[maybe_unused]] Backend& backend, [[maybe_unused]] bool compact) {
+#ifdef PHOTON_HAVE_CUDA
+    LaunchConfig c;
+    c.compactPhotons = compact;
+    setCudaLaunchConfig(backend, c);
+#endif
+}
+
 int run(int argc, char** argv) {
     CLI::App app{"Photon benchmark: per-stage times over scenes, resolutions, photon counts and backends",
                  "photon-bench"};
@@ -208,6 +216,7 @@ int run(int argc, char** argv) {
     std::uint32_t warmup = 3;
     std::uint32_t cpuFrames = 3;
     bool launchSweep = false;
+    bool compare16 = false;
     BackendOptions options;
     app.add_option("--backends", backends, "Comma-separated: cpu,cuda,vulkan");
     app.add_option("--scenes", scenes, "Comma-separated scene names (files in --scenes-dir; cornell is built in)");
@@ -222,6 +231,7 @@ int run(int argc, char** argv) {
                                    "(cell_size, gather_budget, radius, caustic_radius, caustic_fraction, estimator, ...)");
     app.add_option("--grid-sweep", gridSweep, "Comma-separated photon counts: grid build rate at 320x240");
     app.add_flag("--launch-sweep", launchSweep, "CUDA: sweep block shapes of every stage");
+    app.add_flag("--compact-photons", compare16, "CUDA: also measure the 16-byte photon record");
     app.add_option("--device", options.device, "GPU to use");
     app.add_option("--json", jsonPath, "Write the rows as JSON");
     app.add_option("--csv", csvPath, "Write the rows as CSV");
@@ -312,6 +322,11 @@ int run(int argc, char** argv) {
                     sweepLaunchShapes(*backend, [&](const std::string& shape) { add(c.settings, shape); });
                 } else {
                     add(c.settings, c.variant);
+                }
+                if (compare16 && backendName == "cuda") {
+                    setCompactPhotons(*backend, true);
+                    add(c.settings, (c.variant.empty() ? "" : c.variant + " ") + "16-byte photons");
+                    setCompactPhotons(*backend, false);
                 }
             }
         }

@@ -24,7 +24,7 @@ void upload(DeviceArray<T>& device, const std::vector<T>& host, const char* what
 
 class CudaBackend final : public Backend {
 public:
-    explicit CudaBackend(const BackendOptions& options) : kernels_(options.parity ? kParityKernels : kFastKernels) {
+    explicit CudaBackend(const BackendOptions& options) : kernels_(options.parity ? &kParityKernels : &kFastKernels) {
         int count = cudaDeviceCount();
         if (count == 0) {
             throw RuntimeError("CUDA: no CUDA device is available on this machine");
@@ -60,7 +60,13 @@ public:
     std::string name() const override { return "cuda"; }
     std::string deviceName() const override { return std::string(properties_.name) + (parity_ ? " (parity build)" : ""); }
 
-    void setLaunchConfig(const LaunchConfig& config) { config_ = config; }
+    void setLaunchConfig(const LaunchConfig& config) {
+        if (config.compactPhotons && std::any_of(scene().materials.begin(), scene().materials.end(),
+                                                 [](const Material& m) { return m.type == MATERIAL_GLOSSY; })) {
+            throw InputError("compact photons carry no direction: the scene's glossy materials need it");
+        }
+        config_ = config;
+    }
 
     PhotonMaps readPhotonMaps() override {
         PhotonMaps maps;
@@ -104,12 +110,14 @@ protected:
         std::size_t pixels = std::size_t(width) * height;
         std::size_t photons = std::max<std::size_t>(budget.totalCapacity(), 1);
         std::size_t cells = budget.totalCellEntries();
-        std::size_t need = photons * (2 * sizeof(Photon) + sizeof(std::uint32_t)) + 2 * cells * sizeof(std::uint32_t) +
+        std::size_t need = photons * (2 * sizeof(Photon) + sizeof(CompactPhoton) + sizeof(std::uint32_t)) +
+                           2 * cells * sizeof(std::uint32_t) +
                            pixels * (sizeof(HitPoint) + 2 * sizeof(glm::vec4));
         // Free the old buffers first, then check what the device has: too much fails here, before work.
         for (DeviceArray<Photon>* a : {&photons_, &sortedPhotons_}) {
             a->resize(0, "allocate");
         }
+        compactPhotons_.resize(0, "allocate");
         photonKeys_.resize(0, "allocate");
         std::size_t freeBytes = 0;
         std::size_t totalBytes = 0;
@@ -122,6 +130,7 @@ protected:
         }
         photons_.resize(photons, "allocate photons");
         sortedPhotons_.resize(photons, "allocate photons");
+        compactPhotons_.resize(photons, "allocate photons");
         photonKeys_.resize(photons, "allocate photons");
         cellCounts_.resize(cells, "allocate grid");
         cellStart_.resize(cells, "allocate grid");
@@ -142,9 +151,10 @@ protected:
     FrameStats runFrame(const FrameParams& params) override {
         bind(params);
         const Bindings& b = bindings_;
+        const StageKernels& kernels = config_.compactPhotons ? kCompactKernels : *kernels_;
         CUDA_CHECK(cudaEventRecord(events_[kStart], stream_), "tracePhotons");
         CUDA_CHECK(cudaMemsetAsync(deviceCounters_.data(), 0, deviceCounters_.bytes(), stream_), "tracePhotons");
-        kernels_.tracePhotons(b, params.globalPaths + params.causticPaths, config_, stream_);
+        kernels.tracePhotons(b, params.globalPaths + params.causticPaths, config_, stream_);
         CUDA_CHECK(cudaEventRecord(events_[kPhotonsTraced], stream_), "tracePhotons");
 
         for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
@@ -152,17 +162,17 @@ protected:
             if (g.photonCapacity == 0) {
                 continue;
             }
-            kernels_.countCells(b, m, config_, stream_);
+            kernels.countCells(b, m, config_, stream_);
             scan_.exclusiveSum(cellCounts_.data() + g.cellOffset, cellStart_.data() + g.cellOffset, g.cellCount + 1, stream_);
-            kernels_.scatterPhotons(b, m, config_, stream_);
+            kernels.scatterPhotons(b, m, config_, stream_);
         }
         CUDA_CHECK(cudaEventRecord(events_[kGridBuilt], stream_), "buildGrid");
 
-        kernels_.tracePixels(b, config_, stream_);
+        kernels.tracePixels(b, config_, stream_);
         CUDA_CHECK(cudaEventRecord(events_[kPixelsTraced], stream_), "tracePixels");
-        kernels_.gather(b, config_, stream_);
+        kernels.gather(b, config_, stream_);
         CUDA_CHECK(cudaEventRecord(events_[kGathered], stream_), "gather");
-        kernels_.accumulate(b, config_, stream_);
+        kernels.accumulate(b, config_, stream_);
         CUDA_CHECK(cudaEventRecord(events_[kAccumulated], stream_), "accumulate");
         CUDA_CHECK(cudaMemcpyAsync(counters_.data(), deviceCounters_.data(), counters_.bytes(), cudaMemcpyDeviceToHost,
                                    stream_),
@@ -203,6 +213,7 @@ private:
         b.photons = photons_.data();
         b.photonKeys = photonKeys_.data();
         b.sortedPhotons = sortedPhotons_.data();
+        b.compactPhotons = compactPhotons_.data();
         b.cellCounts = cellCounts_.data();
         b.cellStart = cellStart_.data();
         b.counters = deviceCounters_.data();
@@ -221,7 +232,7 @@ private:
         return image;
     }
 
-    const StageKernels& kernels_;
+    const StageKernels* kernels_;  // fast or parity
     bool parity_ = false;
     cudaDeviceProp properties_{};
     cudaStream_t stream_ = nullptr;
@@ -243,6 +254,7 @@ private:
     DeviceArray<Photon> photons_;        // in the order they were stored
     DeviceArray<std::uint32_t> photonKeys_;
     DeviceArray<Photon> sortedPhotons_;  // in cell order
+    DeviceArray<CompactPhoton> compactPhotons_;  // the same, 16 bytes each (LaunchConfig::compactPhotons)
     DeviceArray<std::uint32_t> cellCounts_;
     DeviceArray<std::uint32_t> cellStart_;
     CellScan scan_;

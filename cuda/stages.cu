@@ -77,7 +77,16 @@ __global__ void scatterPhotonsKernel(Bindings b, uint map) {
         uint key = b.photonKeys[grid.photonOffset + i];
         // Counting down the cell's count hands out its slots and leaves the count at zero.
         uint slot = atomicSub(&b.cellCounts[grid.cellOffset + key], 1u) - 1u;
-        b.sortedPhotons[grid.photonOffset + b.cellStart[grid.cellOffset + key] + slot] = b.photons[grid.photonOffset + i];
+        uint place = grid.photonOffset + b.cellStart[grid.cellOffset + key] + slot;
+#ifdef PH_COMPACT_PHOTONS
+        const Photon& p = b.photons[grid.photonOffset + i];
+        CompactPhoton c;
+        c.position = p.position;
+        c.power = encodeRgbe(p.power);
+        b.compactPhotons[place] = c;
+#else
+        b.sortedPhotons[place] = b.photons[grid.photonOffset + i];
+#endif
     }
 }
 

@@ -1,6 +1,7 @@
 // The CUDA kernels of one frame, one per stage, behind a table of launch functions. stages.cu is
-// compiled twice: with FMA contraction (the fast build) and without (--fmad=false, the parity
-// build, whose photon maps and hit points match the CPU backend bit for bit).
+// compiled three times: with FMA contraction (the fast build), without (--fmad=false, the parity
+// build, whose photon maps and hit points match the CPU backend bit for bit), and with 16-byte
+// photons (PH_COMPACT_PHOTONS, an experiment measured in docs/performance.md).
 #pragma once
 
 #include <cuda_runtime.h>
@@ -17,6 +18,7 @@ struct LaunchConfig {
     std::uint32_t pixelBlockX = 16;   // pixel tile of the eye pass and the gather
     std::uint32_t pixelBlockY = 8;
     std::uint32_t gridBlocks = 1056;  // blocks of the grid-stride loops over stored photons
+    bool compactPhotons = false;      // gather from 16-byte photons (no side test, Lambertian only)
 };
 
 struct StageKernels {
@@ -33,5 +35,6 @@ struct StageKernels {
 
 extern const StageKernels kFastKernels;
 extern const StageKernels kParityKernels;
+extern const StageKernels kCompactKernels;
 
 }  // namespace photon

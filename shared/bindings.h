@@ -74,6 +74,7 @@ struct Bindings {
     Photon* photons;
     uint* photonKeys;
     Photon* sortedPhotons;
+    CompactPhoton* compactPhotons;  // the compact-photon experiment only (CUDA); no GLSL binding
     uint* cellCounts;
     uint* cellStart;
     uint* counters;

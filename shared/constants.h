@@ -14,6 +14,7 @@ PH_CONST float INV_TWO_PI = 0.15915494309189533577f;
 PH_CONST float INV_FOUR_PI = 0.07957747154594766788f;
 PH_CONST float FLOAT_MAX = 3.402823466e+38f;
 PH_CONST uint NONE = 0xffffffffu;
+PH_CONST uint INCOMING_UNKNOWN = 0xffffffffu;  // Photon::incoming of a compact photon: no side test
 
 // Material types (Material::type).
 PH_CONST uint MATERIAL_DIFFUSE = 0u;  // Lambertian: albedo/π

@@ -51,6 +51,9 @@ PH_FN float kernelNorm(uint kernel) {
 // surfaces return 1 and get albedo/π once, outside the loop (estimateScale); they only need the
 // side, so they skip normalising ωp.
 PH_FN vec3 photonReflectance(PH_IN(Shading) s, uint incoming) {
+#ifdef PH_COMPACT_PHOTONS
+    return vec3(1.0f);  // compact photons carry no direction (Lambertian scenes only)
+#endif
     if (s.material.type == MATERIAL_DIFFUSE) {
         return dot(octDecodeUnnormalized(incoming), s.normal) > 0.0f ? vec3(1.0f) : vec3(0.0f);
     }
@@ -67,6 +70,22 @@ PH_CONST float DISC_THICKNESS = 0.25f;  // half-thickness of the estimation disc
 PH_FN vec3 discExtent(vec3 n, float r, float t) {
     vec3 n2 = n * n;
     return r * sqrt(max(vec3(1.0f) - n2, vec3(0.0f))) + t * abs(n);
+}
+
+// Photon i of the sorted maps. The compact-photon experiment (PH_COMPACT_PHOTONS, CUDA only) reads
+// 16-byte records instead.
+PH_FN Photon loadMapPhoton(BUF_PARAM uint i) {
+#ifdef PH_COMPACT_PHOTONS
+    CompactPhoton c = BUF(compactPhotons)[i];
+    Photon p;
+    p.position = c.position;
+    p.incoming = INCOMING_UNKNOWN;
+    p.power = decodeRgbe(c.power);
+    p.flags = 0u;
+    return p;
+#else
+    return BUF(sortedPhotons)[i];
+#endif
 }
 
 // Walks the cells that a box (x ± extent) overlaps. Hashed grids have cells of edge at least r, so
@@ -164,7 +183,7 @@ PH_FN vec3 estimateRadius(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, fl
             i = subsampleStart(begin, stride, u);
             continue;
         }
-        addRadiusContribution(cellSum, s, BUF(sortedPhotons)[i], r2, invR2, thickness, kernel);
+        addRadiusContribution(cellSum, s, loadMapPhoton(BUF_ARG i), r2, invR2, thickness, kernel);
         i += stride;
     }
     return sum * estimateScale(s) * (kernelNorm(kernel) * INV_PI * invR2);
@@ -179,7 +198,7 @@ PH_FN vec3 estimateCell(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, floa
     uint stride = subsampleStride(end - begin, BUF(params).gatherBudget);
     vec3 sum = vec3(0.0f);
     for (uint i = subsampleStart(begin, stride, u); i < end; i += stride) {
-        Photon p = BUF(sortedPhotons)[i];
+        Photon p = loadMapPhoton(BUF_ARG i);
         if (grid.kind == GRID_BOUNDED || all(equal(cellOf(p.position, grid), cell))) {
             sum += photonReflectance(s, p.incoming) * p.power;
         }
@@ -203,7 +222,7 @@ PH_FN vec3 estimateKnn(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float
         uint end;
         cellRange(BUF_ARG grid, key, begin, end);
         for (uint i = begin; i < end; ++i) {
-            Photon p = BUF(sortedPhotons)[i];
+            Photon p = loadMapPhoton(BUF_ARG i);
             vec3 d = p.position - s.position;
             float d2 = dot(d, d);
             if (d2 >= maxR2 || (count == k && d2 >= heapDistance[0]) || abs(dot(d, s.normal)) > thickness) {
@@ -251,7 +270,7 @@ PH_FN vec3 estimateKnn(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float
     float r2 = count == k ? heapDistance[0] : maxR2;
     vec3 sum = vec3(0.0f);
     for (uint j = 0u; j < count; ++j) {
-        Photon p = BUF(sortedPhotons)[heapPhoton[j]];
+        Photon p = loadMapPhoton(BUF_ARG heapPhoton[j]);
         sum += photonReflectance(s, p.incoming) * p.power * kernelProfile(kernel, heapDistance[j] / r2);
     }
     return sum * estimateScale(s) * (kernelNorm(kernel) / (PI * r2));

@@ -114,6 +114,12 @@ struct PH_ALIGN16 Photon {
     vec3 power; uint flags;        // flux [W]; bounce count of the path when stored
 };
 
+// The 16-byte photon of the compact-photon experiment (CUDA only, see docs/performance.md): flux in
+// Ward's shared-exponent RGBE, no incoming direction.
+struct PH_ALIGN16 CompactPhoton {
+    vec3 position; uint power;
+};
+
 // ---- Eye pass ---------------------------------------------------------------------------------
 
 // Where a pixel's eye path ended on a non-specular surface, and what it already knows.
@@ -155,6 +161,7 @@ PH_OFFSET(FrameParams, globalPaths, 256); PH_OFFSET(FrameParams, estimator, 272)
 PH_OFFSET(FrameParams, gatherRays, 288); PH_OFFSET(FrameParams, exposure, 304);
 PH_OFFSET(FrameParams, gatherBudget, 312);
 PH_SIZE(Photon, 32); PH_OFFSET(Photon, incoming, 12); PH_OFFSET(Photon, power, 16); PH_OFFSET(Photon, flags, 28);
+PH_SIZE(CompactPhoton, 16); PH_OFFSET(CompactPhoton, power, 12);
 PH_SIZE(HitPoint, 48); PH_OFFSET(HitPoint, material, 12); PH_OFFSET(HitPoint, weight, 16);
 PH_OFFSET(HitPoint, normal, 28); PH_OFFSET(HitPoint, direct, 32); PH_OFFSET(HitPoint, outgoing, 44);
 }  // namespace photon
