@@ -247,4 +247,14 @@ Camera makeCamera(const CameraDesc& desc, std::uint32_t width, std::uint32_t hei
     return c;
 }
 
+void bindSceneArrays(Bindings& b, const Scene& scene) {
+    b.spheres = scene.spheres.data();
+    b.planes = scene.planes.data();
+    b.quads = scene.quads.data();
+    b.triangles = scene.triangles.data();
+    b.materials = scene.materials.data();
+    b.lights = scene.lights.data();
+    b.targets = scene.targets.data();
+}
+
 }  // namespace photon

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "settings.h"
-#include "shared/layout.h"
+#include "shared/bindings.h"
 
 namespace photon {
 
@@ -70,5 +70,9 @@ struct Scene {
 
 // The shared camera for an image of width × height.
 Camera makeCamera(const CameraDesc& desc, std::uint32_t width, std::uint32_t height);
+
+// Points the scene members of host-side Bindings (spheres ... targets) at the scene's arrays, for
+// running shared/ functions on the CPU.
+void bindSceneArrays(Bindings& bindings, const Scene& scene);
 
 }  // namespace photon

@@ -102,13 +102,7 @@ private:
     void bind(const FrameParams& params) {
         Bindings& b = bindings_;
         b.params = params;
-        b.spheres = scene_.spheres.data();
-        b.planes = scene_.planes.data();
-        b.quads = scene_.quads.data();
-        b.triangles = scene_.triangles.data();
-        b.materials = scene_.materials.data();
-        b.lights = scene_.lights.data();
-        b.targets = scene_.targets.data();
+        bindSceneArrays(b, scene_);
         b.photons = nullptr;  // the CPU appends per chunk instead
         b.compactPhotons = nullptr;
         b.photonKeys = nullptr;

@@ -22,13 +22,7 @@ struct SceneBindings {
         scene.finalize();
         PhotonBudget budget = planPhotons(scene, settings);
         bindings.params = makeFrameParams(scene, scene.camera, settings, budget, 0, 0);
-        bindings.spheres = scene.spheres.data();
-        bindings.planes = scene.planes.data();
-        bindings.quads = scene.quads.data();
-        bindings.triangles = scene.triangles.data();
-        bindings.materials = scene.materials.data();
-        bindings.lights = scene.lights.data();
-        bindings.targets = scene.targets.data();
+        bindSceneArrays(bindings, scene);
     }
 };
 
