@@ -79,8 +79,10 @@ Scene sceneNamed(const std::string& name, const std::string& scenesDir) {
     return loadSceneFile(scenesDir + "/" + name + ".json");
 }
 
+double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
 Row measure(Backend& backend, const Scene& scene, RenderSettings settings, std::uint32_t warmup, std::uint32_t frames,
-            Clock::time_point created) {
+            Clock::time_point created, bool verbose) {
     backend.setScene(scene);
     backend.setSettings(settings);
     Row row;
@@ -89,9 +91,18 @@ Row measure(Backend& backend, const Scene& scene, RenderSettings settings, std::
     row.width = settings.width;
     row.height = settings.height;
     row.photons = settings.photons;
+    double toReady = msSince(created);
+    backend.prepare();
+    double toPrepared = msSince(created);
     backend.renderFrame();
+    double toFrame = msSince(created);
     backend.image();
-    row.firstImageMs = std::chrono::duration<double, std::milli>(Clock::now() - created).count();
+    row.firstImageMs = msSince(created);
+    if (verbose) {
+        std::printf("  first image of %s: backend created %.1f ms, scene uploaded and buffers allocated %.1f ms, "
+                    "first frame %.1f ms, image on the host %.1f ms\n",
+                    row.backend.c_str(), toReady, toPrepared, toFrame, row.firstImageMs);
+    }
     for (std::uint32_t f = 1; f < warmup; ++f) {
         backend.renderFrame();
     }
@@ -301,12 +312,15 @@ int run(int argc, char** argv) {
     printHeader();
     for (const std::string& backendName : split(backends)) {
         Clock::time_point created = Clock::now();
+        if (rows.empty()) {
+            std::printf("  process start to backend creation: %.1f ms\n", msSince(kProcessStart));
+        }
         std::unique_ptr<Backend> backend = createBackend(backendName, options);
         bool cpu = backendName == "cpu";
         for (const std::string& sceneName : split(scenes)) {
             Scene scene = sceneNamed(sceneName, scenesDir);
             auto add = [&](const RenderSettings& s, const std::string& variant) {
-                Row r = measure(*backend, scene, s, cpu ? 1 : warmup, cpu ? cpuFrames : frames, created);
+                Row r = measure(*backend, scene, s, cpu ? 1 : warmup, cpu ? cpuFrames : frames, created, rows.empty());
                 r.scene = sceneName;
                 r.variant = variant;
                 if (processToFirstImage == 0.0) {
