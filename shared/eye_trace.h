@@ -35,6 +35,21 @@ PH_FN Ray cameraRay(PH_IN(Camera) camera, uint px, uint py, uint width, uint hei
     return makeRay(origin, direction, FLOAT_MAX);
 }
 
+// The inverse of cameraRay through a pinhole: where `point` appears on the image, as continuous
+// pixel coordinates (x right, y down; pixel (px, py) spans [px, px + 1) × [py, py + 1), its centre
+// at +0.5) and, in z, its depth along the view direction. z ≤ 0: the point is behind the camera
+// and x, y mean nothing. A thin lens blurs points off the focus plane; their pinhole position is
+// returned.
+PH_FN vec3 projectToPixel(PH_IN(Camera) camera, vec3 point, uint width, uint height) {
+    vec3 d = point - camera.position;
+    float z = dot(d, camera.forward);
+    float sx = dot(d, camera.right) / z;
+    float sy = dot(d, camera.up) / z;
+    float x = (sx / (camera.tanHalfFovY * camera.aspect) + 1.0f) * 0.5f * float(width);
+    float y = (1.0f - sy / camera.tanHalfFovY) * 0.5f * float(height);
+    return vec3(x, y, z);
+}
+
 // Reflected direct light at x from every light, lightSamples shadow rays each.
 PH_FN vec3 directLight(BUF_PARAM vec3 x, vec3 n, vec3 wo, PH_IN(Material) m, PH_INOUT(Rng) rng) {
     vec3 sum = vec3(0.0f);

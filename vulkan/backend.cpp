@@ -113,6 +113,19 @@ FrameStats VulkanBackend::runFrame(const FrameParams& params) {
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
     recordFrame(cmd, params);
+    recordStatsReadback(cmd);
+    VK_CHECK(vkEndCommandBuffer(cmd));
+
+    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &cmd;
+    VK_CHECK(vkQueueSubmit(context_->queue, 1, &submit, frame_.done));
+    VK_CHECK(vkWaitForFences(context_->device, 1, &frame_.done, VK_TRUE, UINT64_MAX));
+    VK_CHECK(vkResetFences(context_->device, 1, &frame_.done));
+    return frameStats(params);
+}
+
+void VulkanBackend::recordStatsReadback(VkCommandBuffer cmd) {
     // The counters are final before they are copied out for the host (after the last stage, so
     // the copy delays nothing).
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
@@ -122,15 +135,9 @@ FrameStats VulkanBackend::runFrame(const FrameParams& params) {
     // The copy is written before the host reads it.
     memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
                   VK_ACCESS_HOST_READ_BIT);
-    VK_CHECK(vkEndCommandBuffer(cmd));
+}
 
-    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    submit.commandBufferCount = 1;
-    submit.pCommandBuffers = &cmd;
-    VK_CHECK(vkQueueSubmit(context_->queue, 1, &submit, frame_.done));
-    VK_CHECK(vkWaitForFences(context_->device, 1, &frame_.done, VK_TRUE, UINT64_MAX));
-    VK_CHECK(vkResetFences(context_->device, 1, &frame_.done));
-
+FrameStats VulkanBackend::frameStats(const FrameParams& params) {
     FrameStats stats;
     const auto* counters = static_cast<const std::uint32_t*>(frame_.counters.mapped());
     for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {

@@ -40,8 +40,19 @@ public:
     // orders its own reads of it (COMPUTE_SHADER / SHADER_WRITE before them).
     void recordFrame(VkCommandBuffer cmd, const FrameParams& params);
 
+    // After recordFrame() in the caller's command buffer: copies the frame's counters for the
+    // host. Once that submission has completed, frameStats() reads them and the stage timestamps
+    // (what runFrame() returns). One frame at a time: there is one copy and one query pool.
+    void recordStatsReadback(VkCommandBuffer cmd);
+    FrameStats frameStats(const FrameParams& params);
+
     // The running mean: width × height vec4 of linear radiance, row by row from the top.
     VkBuffer accumulationBuffer() const { return buffers_[BINDING_ACCUMULATION].handle(); }
+    // Any buffer of shared/bindings.h, and the descriptor set that binds them all (set 0 of
+    // pipelines().layout), for a viewer's own passes over the frame's data (e.g. the photon maps).
+    // Both change when prepare() reallocates: look them up after it, for each frame.
+    VkBuffer buffer(std::uint32_t binding) const { return buffers_[binding].handle(); }
+    const Pipelines& pipelines() const { return pipelines_; }
     const Context& context() const { return *context_; }
 
 protected:

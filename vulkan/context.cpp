@@ -53,7 +53,8 @@ int typeRank(VkPhysicalDeviceType type) {
 }
 
 // Why the device cannot run the backend, or "" if it can. Fills the queue family.
-std::string checkDevice(DeviceCandidate& c, VkSurfaceKHR surface, const std::vector<const char*>& deviceExtensions) {
+std::string checkDevice(DeviceCandidate& c, VkSurfaceKHR surface, const std::vector<const char*>& deviceExtensions,
+                        bool graphics) {
     if (c.properties.apiVersion < kApiVersion) {
         return "Vulkan 1.3 is required";
     }
@@ -88,7 +89,8 @@ std::string checkDevice(DeviceCandidate& c, VkSurfaceKHR surface, const std::vec
         if (surface != VK_NULL_HANDLE) {
             VK_CHECK(vkGetPhysicalDeviceSurfaceSupportKHR(c.physicalDevice, f, surface, &present));
         }
-        if (!(families[f].queueFlags & VK_QUEUE_COMPUTE_BIT) || !present) {
+        VkQueueFlags needed = VK_QUEUE_COMPUTE_BIT | (graphics ? VK_QUEUE_GRAPHICS_BIT : 0);
+        if ((families[f].queueFlags & needed) != needed || !present) {
             continue;
         }
         // Prefer a family that can time the stages.
@@ -97,7 +99,8 @@ std::string checkDevice(DeviceCandidate& c, VkSurfaceKHR surface, const std::vec
         }
     }
     if (best < 0) {
-        return surface != VK_NULL_HANDLE ? "no queue family with compute and present" : "no compute queue";
+        return std::string("no queue family with compute") + (graphics ? ", graphics" : "") +
+               (surface != VK_NULL_HANDLE ? " and present" : "");
     }
     c.queueFamily = std::uint32_t(best);
     return "";
@@ -117,7 +120,7 @@ std::string describe(const std::vector<DeviceCandidate>& candidates) {
 }  // namespace
 
 std::vector<DeviceCandidate> listDevices(VkInstance instance, VkSurfaceKHR surface,
-                                         const std::vector<const char*>& deviceExtensions) {
+                                         const std::vector<const char*>& deviceExtensions, bool graphics) {
     std::uint32_t count = 0;
     VK_CHECK(vkEnumeratePhysicalDevices(instance, &count, nullptr));
     std::vector<VkPhysicalDevice> devices(count);
@@ -126,7 +129,7 @@ std::vector<DeviceCandidate> listDevices(VkInstance instance, VkSurfaceKHR surfa
     for (std::uint32_t i = 0; i < count; ++i) {
         candidates[i].physicalDevice = devices[i];
         vkGetPhysicalDeviceProperties(devices[i], &candidates[i].properties);
-        candidates[i].unsuitable = checkDevice(candidates[i], surface, deviceExtensions);
+        candidates[i].unsuitable = checkDevice(candidates[i], surface, deviceExtensions, graphics);
     }
     return candidates;
 }
@@ -264,7 +267,7 @@ void Context::createInstance(const ContextOptions& options, bool validation) {
 }
 
 void Context::createDevice(const ContextOptions& options) {
-    std::vector<DeviceCandidate> candidates = listDevices(instance, surface, options.deviceExtensions);
+    std::vector<DeviceCandidate> candidates = listDevices(instance, surface, options.deviceExtensions, options.graphics);
     const DeviceCandidate& chosen = pickDevice(candidates, options.device);
     physicalDevice = chosen.physicalDevice;
     queueFamily = chosen.queueFamily;
@@ -323,6 +326,11 @@ void Context::checkValidation(const char* where) {
 VKAPI_ATTR VkBool32 VKAPI_CALL Context::onMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                                   VkDebugUtilsMessageTypeFlagsEXT,
                                                   const VkDebugUtilsMessengerCallbackDataEXT* data, void* self) {
+    // The loader saying that VK_INSTANCE_LAYERS added the validation layer (as the viewer's test
+    // asks it to) is a notice, not a finding.
+    if (data->pMessage && std::strstr(data->pMessage, "env var 'VK_INSTANCE_LAYERS' defined and adding layers")) {
+        return VK_FALSE;
+    }
     const char* level = severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT ? "error" : "warning";
     std::string message = std::string("[") + level + "] " + (data->pMessageIdName ? data->pMessageIdName : "") +
                           ": " + (data->pMessage ? data->pMessage : "");

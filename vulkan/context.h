@@ -20,6 +20,7 @@ struct ContextOptions {
                                                   // also on when PHOTON_VULKAN_VALIDATION=1
     std::vector<const char*> instanceExtensions;  // e.g. VK_KHR_surface and the window system's
     std::vector<const char*> deviceExtensions;    // e.g. VK_KHR_swapchain
+    bool graphics = false;                        // the queue must also draw (a viewer's render passes)
     // Called once the instance exists: a window's surface, which the queue must then present to.
     // The context destroys it.
     std::function<VkSurfaceKHR(VkInstance)> createSurface;
@@ -29,13 +30,13 @@ struct ContextOptions {
 struct DeviceCandidate {
     VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
     VkPhysicalDeviceProperties properties{};
-    std::uint32_t queueFamily = 0;  // a family with compute (and present, when there is a surface)
+    std::uint32_t queueFamily = 0;  // a family with compute (and graphics, present, when asked for)
     std::string unsuitable;         // why it cannot run Photon; empty if it can
 };
 
 // Every physical device of the instance, with whether and why it cannot run the backend.
 std::vector<DeviceCandidate> listDevices(VkInstance instance, VkSurfaceKHR surface,
-                                         const std::vector<const char*>& deviceExtensions);
+                                         const std::vector<const char*>& deviceExtensions, bool graphics = false);
 
 // The candidate the options ask for; throws RuntimeError naming the devices if none fits.
 const DeviceCandidate& pickDevice(const std::vector<DeviceCandidate>& candidates, const std::string& request);
@@ -62,7 +63,7 @@ public:
     VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
     VkDevice device = VK_NULL_HANDLE;
 
-    // The one queue: compute (and present, with a surface).
+    // The one queue: compute (and graphics and present, when asked for).
     VkQueue queue = VK_NULL_HANDLE;
     std::uint32_t queueFamily = 0;
     std::uint32_t timestampValidBits = 0;  // 0: the queue cannot time stages

@@ -1,0 +1,121 @@
+// photon-view: the windowed viewer. Opens a scene (or the built-in Cornell box) and renders it
+// progressively with the Vulkan backend while you move through it; see docs/viewer.md.
+//
+//   photon-view [scene.json] [render options of photon-render] --vsync on|off --validation
+//   photon-view ... --frames N --screenshot out.png [--resize-after K WxH]   (scripted: exits 0)
+//   photon-view ... --offscreen --frames N [--stats times.json]              (no display needed)
+//
+// Exit codes: 0 success, 2 bad input (scene, options), 1 runtime failure (no window, no device,
+// a Vulkan validation message).
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "apps/render_options.h"
+#include "core/error.h"
+#include "core/image.h"
+#include "core/scene_loader.h"
+#include "viewer/viewer.h"
+
+namespace photon {
+namespace {
+
+void parseSize(const std::string& text, std::uint32_t& width, std::uint32_t& height) {
+    unsigned w = 0;
+    unsigned h = 0;
+    char x = 0;
+    char extra = 0;
+    if (std::sscanf(text.c_str(), "%u%c%u%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w == 0 || h == 0 ||
+        w > 16384 || h > 16384) {
+        throw InputError("--resize-after: '" + text + "' is not a size like 800x600");
+    }
+    width = w;
+    height = h;
+}
+
+int run(int argc, char** argv) {
+    CLI::App app{"Photon: interactive progressive photon mapping with Vulkan", "photon-view"};
+    viewer::ViewerOptions o;
+    RenderOptions render;
+    std::string vsync = "on";
+    std::vector<std::string> resize;
+    bool noHud = false;
+    app.add_option("scene", o.scenePath, "Scene file (JSON); the built-in Cornell box if omitted");
+    app.add_option("--device", o.device, "GPU to use: index or part of its name");
+    app.add_flag("--validation", o.validation, "Vulkan validation layer on; any message fails");
+    app.add_option("--vsync", vsync, "Wait for the display's refresh: on|off")->check(CLI::IsMember({"on", "off"}));
+    app.add_flag("--offscreen", o.offscreen, "No window: draw into an image (needs --frames)");
+    app.add_flag("--no-hud", noHud, "Start without the HUD (H or F1 shows it)");
+    app.add_option("--screenshot", o.screenshot, "With --frames: save the last frame here (PNG)");
+    app.add_flag("--screenshot-hud", o.screenshotHud, "Screenshots include the HUD");
+    app.add_option("--resize-after", resize, "With --frames: after K frames resize the window to WxH")
+        ->expected(2)
+        ->option_text("K WxH");
+    app.add_option("--stats", o.statsPath, "Write the median frame times as JSON at exit");
+    addRenderOptions(app, render);
+    // --frames makes a run scripted; --view also takes the viewer's own "dots".
+    app.get_option("--frames")->description("Render this many frames, then exit (scripted use)");
+    app.get_option("--view")->description("What to show: final|direct|global|caustic|dots|grid");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        int code = app.exit(e);
+        return code == 0 ? 0 : 2;
+    }
+
+    if (render.view == "dots") {
+        o.view = viewer::DisplayView::Dots;
+        render.view = "final";
+    } else if (View v; !render.view.empty() && !parse(render.view, v)) {
+        throw InputError("--view: unknown value '" + render.view + "' (expected final|direct|global|caustic|dots|grid)");
+    }
+    o.scene = o.scenePath.empty() ? defaultScene() : loadSceneFile(o.scenePath);
+    o.settings = o.scene.render;
+    applyRenderOptions(app, render, o.settings);
+    if (o.view != viewer::DisplayView::Dots) {
+        const viewer::DisplayView views[] = {viewer::DisplayView::Final, viewer::DisplayView::Direct,
+                                             viewer::DisplayView::Global, viewer::DisplayView::Caustic,
+                                             viewer::DisplayView::Grid};
+        o.view = views[std::uint32_t(o.settings.view)];
+    }
+    o.vsync = vsync == "on";
+    o.hud = !noHud;
+    o.frames = app.count("--frames") > 0 ? o.settings.frames : 0;
+    if (!resize.empty()) {
+        char* end = nullptr;
+        unsigned long frames = std::strtoul(resize[0].c_str(), &end, 10);
+        if (resize[0].empty() || *end != '\0' || frames == 0 || frames > 1000000) {
+            throw InputError("--resize-after: '" + resize[0] + "' is not a number of frames");
+        }
+        o.resizeAfter = std::uint32_t(frames);
+        parseSize(resize[1], o.resizeWidth, o.resizeHeight);
+    }
+    if (o.frames == 0 && (o.offscreen || !o.screenshot.empty() || o.resizeAfter > 0)) {
+        throw InputError("--offscreen, --screenshot and --resize-after need --frames N");
+    }
+    if (!o.screenshot.empty() && imageFormatFor(o.screenshot) != ImageFormat::Png) {
+        throw InputError("--screenshot: " + o.screenshot + ": screenshots are PNG files");
+    }
+
+    viewer::Viewer view(o);
+    view.run();
+    return 0;
+}
+
+}  // namespace
+}  // namespace photon
+
+int main(int argc, char** argv) {
+    try {
+        return photon::run(argc, argv);
+    } catch (const photon::InputError& e) {
+        std::fprintf(stderr, "photon-view: %s\n", e.what());
+        return 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "photon-view: %s\n", e.what());
+        return 1;
+    }
+}

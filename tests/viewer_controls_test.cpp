@@ -1,0 +1,123 @@
+// The viewer's camera controller and light editor: plain math on CameraDesc and Scene, checked
+// without a window.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/scene_loader.h"
+#include "viewer/camera_controller.h"
+#include "viewer/light_editor.h"
+
+namespace photon::viewer {
+namespace {
+
+CameraDesc cornellCamera() {
+    CameraDesc c;
+    c.position = glm::vec3(0.0f, 1.0f, 3.9f);
+    c.lookAt = glm::vec3(0.0f, 1.0f, 0.0f);
+    c.fovY = 38.0f;
+    return c;
+}
+
+void expectNear(glm::vec3 a, glm::vec3 b, float tolerance) {
+    EXPECT_NEAR(a.x, b.x, tolerance);
+    EXPECT_NEAR(a.y, b.y, tolerance);
+    EXPECT_NEAR(a.z, b.z, tolerance);
+}
+
+TEST(CameraController, OrbitKeepsTargetAndDistanceAndUndoes) {
+    CameraController c(cornellCamera(), 3.5f);
+    c.orbit(glm::vec2(120.0f, -40.0f), 600.0f);
+    expectNear(c.camera().lookAt, glm::vec3(0.0f, 1.0f, 0.0f), 1e-6f);
+    EXPECT_NEAR(c.distance(), 3.9f, 1e-4f);
+    EXPECT_LT(c.camera().position.x, -0.5f);  // the scene turns with the mouse, the camera the other way
+    c.orbit(glm::vec2(0.0f, 40.0f), 600.0f);
+    c.orbit(glm::vec2(-120.0f, 0.0f), 600.0f);
+    expectNear(c.camera().position, glm::vec3(0.0f, 1.0f, 3.9f), 1e-4f);
+}
+
+TEST(CameraController, PitchStopsShortOfThePoles) {
+    CameraController c(cornellCamera(), 3.5f);
+    for (int i = 0; i < 50; ++i) {
+        c.orbit(glm::vec2(0.0f, 200.0f), 600.0f);  // far past straight above
+    }
+    glm::vec3 offset = glm::normalize(c.camera().position - c.camera().lookAt);
+    EXPECT_GT(offset.y, 0.99f);
+    EXPECT_LT(offset.y, std::cos(0.5f * 3.14159265f / 180.0f));  // at least 0.5° from the pole
+    for (int i = 0; i < 50; ++i) {
+        c.look(glm::vec2(0.0f, -300.0f), 600.0f);  // looking up past vertical
+    }
+    glm::vec3 forward = glm::normalize(c.camera().lookAt - c.camera().position);
+    EXPECT_LT(forward.y, 1.0f - 1e-5f);
+    EXPECT_TRUE(std::isfinite(forward.x) && std::isfinite(forward.z));
+}
+
+TEST(CameraController, LookKeepsPositionPanKeepsDirection) {
+    CameraController c(cornellCamera(), 3.5f);
+    c.look(glm::vec2(100.0f, 30.0f), 600.0f);
+    expectNear(c.camera().position, glm::vec3(0.0f, 1.0f, 3.9f), 1e-6f);
+    glm::vec3 forward = glm::normalize(c.camera().lookAt - c.camera().position);
+    EXPECT_GT(forward.x, 0.1f);  // dragging right looks right
+    EXPECT_LT(forward.y, -0.01f);  // dragging down looks down
+    CameraController p(cornellCamera(), 3.5f);
+    p.pan(glm::vec2(-300.0f, 0.0f), 600.0f);  // half the window's height to the left: the scene follows
+    expectNear(p.camera().lookAt - p.camera().position, glm::vec3(0.0f, 0.0f, -3.9f), 1e-5f);
+    float halfHeight = 3.9f * std::tan(0.5f * 38.0f * 3.14159265f / 180.0f);
+    EXPECT_NEAR(p.camera().position.x, halfHeight, 1e-4f);
+}
+
+TEST(CameraController, ZoomApproachesTheTargetAndFlyMovesBoth) {
+    CameraController c(cornellCamera(), 3.5f);
+    c.zoom(1.0f);
+    EXPECT_NEAR(c.distance(), 3.9f * 0.9f, 1e-5f);
+    c.zoom(-2.0f);
+    EXPECT_NEAR(c.distance(), 3.9f / 0.9f, 1e-4f);
+    c.zoom(1000.0f);
+    EXPECT_GT(c.distance(), 0.0f);  // never through the target
+    CameraController f(cornellCamera(), 3.5f);
+    FlyInput forward;
+    forward.forward = 1.0f;
+    f.fly(forward, 0.5f, 0.2f);  // 0.2 diagonals a second for half a second: 0.35 units
+    expectNear(f.camera().position, glm::vec3(0.0f, 1.0f, 3.9f - 0.35f), 1e-5f);
+    expectNear(f.camera().lookAt, glm::vec3(0.0f, 1.0f, -0.35f), 1e-5f);
+    FlyInput up;
+    up.up = 1.0f;
+    f.fly(up, 1.0f, 0.1f);
+    EXPECT_NEAR(f.camera().position.y, 1.35f, 1e-5f);
+}
+
+TEST(LightEditor, MovesLightsAndTheirSurfacesWithoutDrift) {
+    Scene s;
+    std::uint32_t white = s.addMaterial("white", makeDiffuse(glm::vec3(0.7f)));
+    s.addQuad(glm::vec3(-1, 0, -1), glm::vec3(0, 0, 2), glm::vec3(2, 0, 0), white);
+    s.addPointLight(glm::vec3(0, 1.5f, 0), glm::vec3(10.0f));
+    s.addSphereLight(glm::vec3(0.5f, 1.0f, 0.0f), 0.1f, glm::vec3(5.0f));
+    s.addQuadLight(glm::vec3(-0.2f, 1.9f, -0.2f), glm::vec3(0.4f, 0, 0), glm::vec3(0, 0, 0.4f), glm::vec3(5.0f));
+    s.finalize();
+    LightEditor editor(s);
+    ASSERT_EQ(editor.lightCount(), 3u);
+    EXPECT_EQ(editor.lightName(1), "sphere 1");
+    for (int i = 0; i < 1000; ++i) {
+        editor.move(1, glm::vec3(0.001f, 0.0f, 0.0f));
+    }
+    editor.setPosition(2, glm::vec3(0.0f, 1.5f, 0.0f));
+    Scene moved = editor.scene();
+    expectNear(moved.lights[1].position, glm::vec3(1.5f, 1.0f, 0.0f), 1e-4f);
+    expectNear(moved.spheres.back().center, glm::vec3(1.5f, 1.0f, 0.0f), 1e-4f);  // its visible sphere
+    expectNear(moved.quads.back().corner, glm::vec3(0.0f, 1.5f, 0.0f), 1e-6f);     // the quad light's surface
+    expectNear(moved.lights[0].position, glm::vec3(0, 1.5f, 0), 0.0f);             // untouched
+    expectNear(moved.quads.front().corner, glm::vec3(-1, 0, -1), 0.0f);            // the floor stays
+    EXPECT_GE(moved.boundsMax.x, 1.6f - 1e-4f);                                   // finalized again
+    editor.reset();
+    expectNear(editor.scene().lights[1].position, glm::vec3(0.5f, 1.0f, 0.0f), 0.0f);
+}
+
+TEST(LightEditor, CornellLightMovesWithTheScene) {
+    LightEditor editor(defaultScene());
+    ASSERT_EQ(editor.lightCount(), 1u);
+    editor.move(0, glm::vec3(0.3f, -0.2f, 0.1f));
+    expectNear(editor.scene().lights[0].position, glm::vec3(0.3f, 1.76f, 0.1f), 1e-6f);
+}
+
+}  // namespace
+}  // namespace photon::viewer

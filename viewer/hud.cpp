@@ -1,0 +1,226 @@
+// The HUD's widgets. Each widget that changes what is rendered raises the matching request in
+// the ViewState; the viewer applies it between frames.
+#include "hud.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include <imgui.h>
+
+namespace photon::viewer {
+namespace {
+
+// A combo over an enumeration with `count` values named by toString().
+template <typename E>
+bool enumCombo(const char* label, E& value, std::uint32_t count) {
+    bool changed = false;
+    if (ImGui::BeginCombo(label, toString(value))) {
+        for (std::uint32_t i = 0; i < count; ++i) {
+            E e = static_cast<E>(i);
+            if (ImGui::Selectable(toString(e), e == value)) {
+                changed = e != value;
+                value = e;
+            }
+        }
+        ImGui::EndCombo();
+    }
+    return changed;
+}
+
+bool sliderUint(const char* label, std::uint32_t& value, std::uint32_t lo, std::uint32_t hi) {
+    int v = int(value);
+    if (ImGui::SliderInt(label, &v, int(lo), int(hi), "%d", ImGuiSliderFlags_AlwaysClamp) && std::uint32_t(v) != value) {
+        value = std::uint32_t(v);
+        return true;
+    }
+    return false;
+}
+
+// A count over decades (Dear ImGui 1.86's logarithmic integer slider ignores its minimum).
+bool sliderCount(const char* label, std::uint32_t& value, float lo, float hi) {
+    float v = float(value);
+    ImGuiSliderFlags flags = ImGuiSliderFlags_AlwaysClamp | ImGuiSliderFlags_Logarithmic;
+    if (ImGui::SliderFloat(label, &v, lo, hi, "%.0f", flags)) {
+        std::uint32_t rounded = std::uint32_t(std::lround(std::clamp(v, lo, hi)));
+        if (rounded != value) {
+            value = rounded;
+            return true;
+        }
+    }
+    return false;
+}
+
+void statsSection(const HudInfo& info) {
+    ImGui::Text("%s", info.device.c_str());
+    ImGui::Text("%.1f fps (%.2f ms)   %s", info.fps, info.frame.loopMs, info.presentMode);
+    ImGui::Text("frames accumulated %u", info.accumulated);
+    std::uint32_t paths = info.stats.emitted[MAP_GLOBAL] + info.stats.emitted[MAP_CAUSTIC];
+    ImGui::Text("%.1f M photons/s (%u paths a frame)", info.frame.photonsPerSecond * 1e-6, paths);
+    ImGui::Text("stored %u global, %u caustic", std::min(info.stats.stored[MAP_GLOBAL], info.stats.capacity[MAP_GLOBAL]),
+                std::min(info.stats.stored[MAP_CAUSTIC], info.stats.capacity[MAP_CAUSTIC]));
+    if (ImGui::BeginTable("stages", 2, ImGuiTableFlags_SizingFixedFit)) {
+        const StageTimes& s = info.frame.stages;
+        const PassTimes& p = info.frame.passes;
+        const std::pair<const char*, double> rows[] = {
+            {"tracePhotons", s.tracePhotons}, {"buildGrid", s.buildGrid}, {"tracePixels", s.tracePixels},
+            {"gather", s.gather},             {"accumulate", s.accumulate}, {"photon dots", p.dots},
+            {"display", p.display},           {"HUD", p.hud},             {"GPU total", s.total() + p.total()}};
+        for (const auto& [name, ms] : rows) {
+            ImGui::TableNextRow();
+            ImGui::TableSetColumnIndex(0);
+            ImGui::TextUnformatted(name);
+            ImGui::TableSetColumnIndex(1);
+            ImGui::Text("%7.2f ms", ms);
+        }
+        ImGui::EndTable();
+    }
+}
+
+void renderSection(ViewState& state, const HudInfo& info) {
+    RenderSettings& s = state.settings;
+    bool changed = false;
+    enumCombo("view", state.view, kDisplayViewCount);
+    changed |= enumCombo("estimator", s.estimator, 4);
+    changed |= sliderCount("photons/frame", s.photons, 1000.0f, 4.0e6f);
+    float radius = s.radius > 0.0f ? s.radius : info.radius[MAP_GLOBAL];
+    if (ImGui::SliderFloat("radius", &radius, 0.001f, 1.0f, "%.4f", ImGuiSliderFlags_Logarithmic)) {
+        s.radius = radius;
+        changed = true;
+    }
+    float causticRadius = s.causticRadius > 0.0f ? s.causticRadius : info.radius[MAP_CAUSTIC];
+    if (ImGui::SliderFloat("caustic radius", &causticRadius, 0.001f, 1.0f, "%.4f", ImGuiSliderFlags_Logarithmic)) {
+        s.causticRadius = causticRadius;
+        changed = true;
+    }
+    changed |= sliderUint("photon depth", s.maxPhotonDepth, 1, 32);
+    changed |= sliderUint("eye depth", s.maxEyeDepth, 1, 32);
+    if (s.estimator == Estimator::Knn) {
+        changed |= sliderUint("k", s.k, 1, KNN_MAX);
+    }
+    if (s.estimator == Estimator::Progressive) {
+        changed |= ImGui::SliderFloat("alpha", &s.alpha, 0.05f, 0.95f);
+    }
+    changed |= enumCombo("global light", s.globalMode, 2);
+    if (s.globalMode == GlobalMode::FinalGather) {
+        changed |= sliderUint("gather rays", s.gatherRays, 1, 64);
+    }
+    changed |= ImGui::Checkbox("pixel centres (no jitter)", &s.pixelCenter);
+    state.settingsChanged |= changed;
+
+    ImGui::SliderFloat("exposure", &state.exposure, -8.0f, 8.0f, "%.1f stops");
+    enumCombo("tone curve", state.tonemap, 3);
+    const float scales[] = {1.0f, 0.5f, 0.25f, 0.125f};
+    const char* scaleNames[] = {"1", "1/2", "1/4", "1/8"};
+    int scale = int(std::find(scales, scales + 4, state.renderScale) - scales) % 4;
+    if (ImGui::Combo("render scale", &scale, scaleNames, 4) && scales[scale] != state.renderScale) {
+        state.renderScale = scales[scale];
+        state.settingsChanged = true;
+    }
+    if (state.view == DisplayView::Dots) {
+        ImGui::Checkbox("hide photons behind surfaces", &state.dotsOcclusion);
+        ImGui::SliderFloat("dot brightness", &state.dotsBrightness, 0.01f, 10.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+    }
+    if (info.windowed && ImGui::Checkbox("vsync", &state.vsync)) {
+        state.vsyncChanged = true;
+    }
+}
+
+void lightSection(ViewState& state, LightEditor& lights) {
+    if (lights.lightCount() == 0) {
+        return;
+    }
+    state.selectedLight = std::min(state.selectedLight, lights.lightCount() - 1);
+    if (ImGui::BeginCombo("light", lights.lightName(state.selectedLight).c_str())) {
+        for (std::uint32_t l = 0; l < lights.lightCount(); ++l) {
+            if (ImGui::Selectable(lights.lightName(l).c_str(), l == state.selectedLight)) {
+                state.selectedLight = l;
+            }
+        }
+        ImGui::EndCombo();
+    }
+    glm::vec3 p = lights.position(state.selectedLight);
+    float speed = 0.002f * lights.loaded().diagonal();
+    if (ImGui::DragFloat3("position", &p.x, speed, 0.0f, 0.0f, "%.3f")) {
+        lights.setPosition(state.selectedLight, p);
+        state.lightsChanged = true;
+    }
+    ImGui::Checkbox("circle", &state.animateLight);
+    ImGui::SameLine();
+    if (ImGui::Button("reset lights")) {
+        lights.reset();
+        state.lightsChanged = true;
+    }
+}
+
+void sceneSection(ViewState& state, const HudInfo& info) {
+    static char path[1024] = "";
+    ImGui::Text("scene: %s", info.scene.c_str());
+    ImGui::InputText("file", path, sizeof(path));
+    ImGui::SameLine();
+    if (ImGui::Button("open") && path[0] != '\0') {
+        state.openScene = path;
+    }
+    if (ImGui::Button("reload (F5)")) {
+        state.reloadScene = true;
+    }
+    ImGui::SameLine();
+    ImGui::Checkbox("reload when the file changes", &state.watchScene);
+    if (ImGui::Button("reset camera (R)")) {
+        state.resetCamera = true;
+    }
+    ImGui::SameLine();
+    ImGui::SliderFloat("fly speed", &state.flySpeed, 0.01f, 2.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+    if (ImGui::Button("screenshot (F12)")) {
+        state.screenshot = true;
+    }
+    ImGui::SameLine();
+    ImGui::Checkbox("with HUD", &state.screenshotHud);
+}
+
+void helpSection() {
+    ImGui::TextUnformatted(
+        "left drag: orbit     right drag: look around\n"
+        "middle / shift+left drag: pan     wheel: zoom\n"
+        "W A S D: fly   Q E: down, up   shift: faster\n"
+        "1-6: final direct global caustic dots grid\n"
+        "arrows, PgUp/PgDn: move the selected light\n"
+        "+ -: exposure   V: vsync   H/F1: HUD\n"
+        "F5: reload scene (or drop a file)   R: reset camera\n"
+        "F12 / P: screenshot   Esc: quit");
+}
+
+}  // namespace
+
+void buildHud(ViewState& state, LightEditor& lights, const HudInfo& info) {
+    ImGui::SetNextWindowPos(ImVec2(8.0f, 8.0f), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(340.0f, 0.0f), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowBgAlpha(0.8f);
+    if (!ImGui::Begin("Photon")) {
+        ImGui::End();
+        return;
+    }
+    ImGui::PushItemWidth(-130.0f);  // room for the labels
+    statsSection(info);
+    if (ImGui::CollapsingHeader("Render", ImGuiTreeNodeFlags_DefaultOpen)) {
+        renderSection(state, info);
+    }
+    if (ImGui::CollapsingHeader("Lights")) {
+        lightSection(state, lights);
+    }
+    if (ImGui::CollapsingHeader("Scene, camera, screenshot")) {
+        sceneSection(state, info);
+    }
+    if (ImGui::CollapsingHeader("Controls")) {
+        helpSection();
+    }
+    if (!state.message.empty()) {
+        ImGui::PushTextWrapPos(0.0f);
+        ImGui::TextColored(ImVec4(1.0f, 0.6f, 0.4f, 1.0f), "%s", state.message.c_str());
+        ImGui::PopTextWrapPos();
+    }
+    ImGui::PopItemWidth();
+    ImGui::End();
+}
+
+}  // namespace photon::viewer

@@ -1,0 +1,67 @@
+#include "offscreen.h"
+
+#include "core/error.h"
+#include "vulkan/check.h"
+
+namespace photon::viewer {
+
+OffscreenTarget::OffscreenTarget(const vk::Context& context, VkExtent2D extent, VkRenderPass renderPass)
+    : context_(context), extent_(extent) {
+    VkDevice device = context.device;
+    VkImageCreateInfo imageInfo{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+    imageInfo.imageType = VK_IMAGE_TYPE_2D;
+    imageInfo.format = kOffscreenFormat;
+    imageInfo.extent = {extent.width, extent.height, 1};
+    imageInfo.mipLevels = 1;
+    imageInfo.arrayLayers = 1;
+    imageInfo.samples = VK_SAMPLE_COUNT_1_BIT;
+    imageInfo.tiling = VK_IMAGE_TILING_OPTIMAL;
+    imageInfo.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    imageInfo.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    imageInfo.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    VK_CHECK(vkCreateImage(device, &imageInfo, nullptr, &image_));
+
+    VkMemoryRequirements requirements;
+    vkGetImageMemoryRequirements(device, image_, &requirements);
+    std::uint32_t type = VK_MAX_MEMORY_TYPES;
+    for (std::uint32_t i = 0; i < context.memoryProperties.memoryTypeCount && type == VK_MAX_MEMORY_TYPES; ++i) {
+        bool allowed = (requirements.memoryTypeBits & (1u << i)) != 0;
+        bool local = (context.memoryProperties.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT) != 0;
+        type = allowed && local ? i : type;
+    }
+    if (type == VK_MAX_MEMORY_TYPES) {
+        throw RuntimeError("no device-local memory type fits the offscreen image");
+    }
+    VkMemoryAllocateInfo allocation{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    allocation.allocationSize = requirements.size;
+    allocation.memoryTypeIndex = type;
+    VK_CHECK(vkAllocateMemory(device, &allocation, nullptr, &memory_));
+    VK_CHECK(vkBindImageMemory(device, image_, memory_, 0));
+
+    VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    viewInfo.image = image_;
+    viewInfo.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    viewInfo.format = kOffscreenFormat;
+    viewInfo.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    VK_CHECK(vkCreateImageView(device, &viewInfo, nullptr, &view_));
+
+    VkFramebufferCreateInfo framebufferInfo{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+    framebufferInfo.renderPass = renderPass;
+    framebufferInfo.attachmentCount = 1;
+    framebufferInfo.pAttachments = &view_;
+    framebufferInfo.width = extent.width;
+    framebufferInfo.height = extent.height;
+    framebufferInfo.layers = 1;
+    VK_CHECK(vkCreateFramebuffer(device, &framebufferInfo, nullptr, &framebuffer_));
+}
+
+OffscreenTarget::~OffscreenTarget() {
+    VkDevice device = context_.device;
+    vkDeviceWaitIdle(device);
+    vkDestroyFramebuffer(device, framebuffer_, nullptr);
+    vkDestroyImageView(device, view_, nullptr);
+    vkDestroyImage(device, image_, nullptr);
+    vkFreeMemory(device, memory_, nullptr);
+}
+
+}  // namespace photon::viewer

@@ -1,0 +1,36 @@
+// How photon-view was started (apps/photon_view.cpp parses these from the command line).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "core/scene.h"
+#include "core/settings.h"
+
+namespace photon::viewer {
+
+// What the image shows: the backend's views, and the viewer's own photon dots.
+enum class DisplayView : std::uint32_t { Final, Direct, Global, Caustic, Dots, Grid };
+constexpr std::uint32_t kDisplayViewCount = 6;
+const char* toString(DisplayView view);
+
+struct ViewerOptions {
+    std::string scenePath;           // empty: the built-in Cornell box
+    Scene scene;                     // loaded from scenePath (or the built-in one)
+    RenderSettings settings;         // the scene's, with the command line's overrides
+    DisplayView view = DisplayView::Final;
+    std::string device;              // Vulkan device: index or part of the name
+    bool validation = false;         // validation layer on; any message is an error
+    bool vsync = true;
+    bool offscreen = false;          // no window: draw into an image (machines without a display)
+    bool hud = true;                 // draw the HUD
+    std::uint32_t frames = 0;        // scripted: render this many frames, then exit (0: until closed)
+    std::string screenshot;          // scripted: save the last frame here (PNG)
+    bool screenshotHud = false;      // screenshots include the HUD
+    std::uint32_t resizeAfter = 0;   // scripted: resize the window after this many frames (0: never)
+    std::uint32_t resizeWidth = 0;
+    std::uint32_t resizeHeight = 0;
+    std::string statsPath;           // write frame-time medians as JSON here at exit
+};
+
+}  // namespace photon::viewer

@@ -1,0 +1,114 @@
+#include "photon_dots.h"
+
+#include "glsl/dispatch.h"
+#include "glsl/viewer.h"
+#include "shared/bindings.h"
+#include "vulkan/check.h"
+
+namespace photon::viewer {
+namespace spirv {
+#include "viewer_dots.spv.h"
+}  // namespace spirv
+
+PhotonDots::PhotonDots(const vk::Context& context, const vk::VulkanBackend& backend) : context_(context) {
+    VkDevice device = context.device;
+    VkDescriptorSetLayoutBinding binding{DOTS_BINDING_DOTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
+                                         VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+    VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    setInfo.bindingCount = 1;
+    setInfo.pBindings = &binding;
+    VK_CHECK(vkCreateDescriptorSetLayout(device, &setInfo, nullptr, &setLayout_));
+
+    // Set 0 is the backend's layout, so that its descriptor set binds here unchanged.
+    VkDescriptorSetLayout sets[2] = {backend.pipelines().setLayout, setLayout_};
+    VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(DotsPush)};
+    VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    layoutInfo.setLayoutCount = 2;
+    layoutInfo.pSetLayouts = sets;
+    layoutInfo.pushConstantRangeCount = 1;
+    layoutInfo.pPushConstantRanges = &push;
+    VK_CHECK(vkCreatePipelineLayout(device, &layoutInfo, nullptr, &layout_));
+
+    VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
+    VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    poolInfo.maxSets = 1;
+    poolInfo.poolSizeCount = 1;
+    poolInfo.pPoolSizes = &size;
+    VK_CHECK(vkCreateDescriptorPool(device, &poolInfo, nullptr, &pool_));
+    VkDescriptorSetAllocateInfo allocation{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    allocation.descriptorPool = pool_;
+    allocation.descriptorSetCount = 1;
+    allocation.pSetLayouts = &setLayout_;
+    VK_CHECK(vkAllocateDescriptorSets(device, &allocation, &set_));
+
+    VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+    moduleInfo.codeSize = sizeof(spirv::viewer_dots);
+    moduleInfo.pCode = spirv::viewer_dots;
+    VkShaderModule module = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateShaderModule(device, &moduleInfo, nullptr, &module));
+    VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    info.stage.module = module;
+    info.stage.pName = "main";
+    info.layout = layout_;
+    VkResult result = vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline_);
+    vkDestroyShaderModule(device, module, nullptr);
+    VK_CHECK(result);
+    resize(1, 1);
+}
+
+PhotonDots::~PhotonDots() {
+    VkDevice device = context_.device;
+    vkDeviceWaitIdle(device);
+    vkDestroyPipeline(device, pipeline_, nullptr);
+    vkDestroyPipelineLayout(device, layout_, nullptr);
+    vkDestroyDescriptorPool(device, pool_, nullptr);
+    vkDestroyDescriptorSetLayout(device, setLayout_, nullptr);
+}
+
+void PhotonDots::resize(std::uint32_t width, std::uint32_t height) {
+    VkDeviceSize bytes = VkDeviceSize(width) * height * 3 * sizeof(std::uint32_t);
+    if (dots_.handle() != VK_NULL_HANDLE && dots_.size() == bytes) {
+        return;
+    }
+    dots_ = vk::Buffer();
+    dots_ = vk::Buffer(context_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                       vk::MemoryUse::Device);
+    VkDescriptorBufferInfo bufferInfo{dots_.handle(), 0, bytes};
+    VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    write.dstSet = set_;
+    write.dstBinding = DOTS_BINDING_DOTS;
+    write.descriptorCount = 1;
+    write.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    write.pBufferInfo = &bufferInfo;
+    vkUpdateDescriptorSets(context_.device, 1, &write, 0, nullptr);
+}
+
+void PhotonDots::record(VkCommandBuffer cmd, const vk::VulkanBackend& backend, float brightness, float depthTolerance) {
+    // The display pass of the previous frame has read the dots before they are cleared.
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                      VK_ACCESS_TRANSFER_WRITE_BIT);
+    vkCmdFillBuffer(cmd, dots_.handle(), 0, VK_WHOLE_SIZE, 0u);
+    // The cleared dots are in place before the photons are added to them.
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                      VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+
+    // One invocation per stored photon of each map, through the group counts that the frame's
+    // gridArgs wrote into the counters (its barriers already made them, the photon maps and the
+    // hit points visible to later indirect dispatches and compute shaders).
+    VkDescriptorSet sets[2] = {backend.pipelines().set, set_};
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 2, sets, 0, nullptr);
+    VkBuffer counters = backend.buffer(BINDING_COUNTERS);
+    for (std::uint32_t map = 0; map < MAP_COUNT; ++map) {
+        DotsPush push{map, brightness, depthTolerance, 0.0f};
+        vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+        vkCmdDispatchIndirect(cmd, counters, (GRID_ARGS + 3 * map) * sizeof(std::uint32_t));
+    }
+    // The dots are complete before the display pass's fragment shader reads them.
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                      VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+}
+
+}  // namespace photon::viewer

@@ -1,0 +1,44 @@
+// Photon dots, the seed's picture of the photon maps: after the backend's frame, every stored
+// photon of both maps is projected to the screen and added to its pixel, weighted by its power
+// (glsl/viewer_dots.comp). The pass reads the backend's buffers through the backend's own
+// descriptor set (set 0 of its layout) and writes a dot buffer of its own (set 1), which the
+// display pass then shows in place of the image.
+#pragma once
+
+#include <cstdint>
+
+#include <vulkan/vulkan.h>
+
+#include "vulkan/backend.h"
+#include "vulkan/memory.h"
+
+namespace photon::viewer {
+
+class PhotonDots {
+public:
+    PhotonDots(const vk::Context& context, const vk::VulkanBackend& backend);
+    ~PhotonDots();
+    PhotonDots(const PhotonDots&) = delete;
+    PhotonDots& operator=(const PhotonDots&) = delete;
+
+    // Sizes the dot buffer for a width × height image (three uint per pixel). Only while no
+    // submitted frame uses it.
+    void resize(std::uint32_t width, std::uint32_t height);
+    VkBuffer buffer() const { return dots_.handle(); }
+
+    // Clears the dots and draws this frame's photons. After the backend's recordFrame() in the
+    // same command buffer; `brightness` is per watt of photon power; `depthTolerance` 0 shows
+    // hidden photons too. Leaves the dots written for the fragment shader to read.
+    void record(VkCommandBuffer cmd, const vk::VulkanBackend& backend, float brightness, float depthTolerance);
+
+private:
+    const vk::Context& context_;
+    VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;  // the dot buffer
+    VkPipelineLayout layout_ = VK_NULL_HANDLE;          // the backend's set, ours, DotsPush
+    VkPipeline pipeline_ = VK_NULL_HANDLE;
+    VkDescriptorPool pool_ = VK_NULL_HANDLE;
+    VkDescriptorSet set_ = VK_NULL_HANDLE;
+    vk::Buffer dots_;                                   // three fixed-point uint per pixel
+};
+
+}  // namespace photon::viewer
