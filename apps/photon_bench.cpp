@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/backends.h"
+#include "apps/program.h"
 #include "apps/render_options.h"
 #include "core/error.h"
 #include "core/scene_loader.h"
@@ -354,13 +355,5 @@ int run(int argc, char** argv) {
 }  // namespace photon
 
 int main(int argc, char** argv) {
-    try {
-        return photon::run(argc, argv);
-    } catch (const photon::InputError& e) {
-        std::fprintf(stderr, "photon-bench: %s\n", e.what());
-        return 2;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "photon-bench: %s\n", e.what());
-        return 1;
-    }
+    return photon::runProgram("photon-bench", [&] { return photon::run(argc, argv); });
 }

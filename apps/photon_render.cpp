@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/backends.h"
+#include "apps/program.h"
 #include "apps/progress.h"
 #include "apps/render_options.h"
 #include "core/error.h"
@@ -160,13 +161,5 @@ int run(int argc, char** argv) {
 }  // namespace photon
 
 int main(int argc, char** argv) {
-    try {
-        return photon::run(argc, argv);
-    } catch (const photon::InputError& e) {
-        std::fprintf(stderr, "photon-render: %s\n", e.what());
-        return 2;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "photon-render: %s\n", e.what());
-        return 1;
-    }
+    return photon::runProgram("photon-render", [&] { return photon::run(argc, argv); });
 }

@@ -15,6 +15,7 @@
 #include <CLI/CLI.hpp>
 
 #include "apps/render_options.h"
+#include "apps/program.h"
 #include "core/error.h"
 #include "core/image.h"
 #include "core/scene_loader.h"
@@ -109,13 +110,5 @@ int run(int argc, char** argv) {
 }  // namespace photon
 
 int main(int argc, char** argv) {
-    try {
-        return photon::run(argc, argv);
-    } catch (const photon::InputError& e) {
-        std::fprintf(stderr, "photon-view: %s\n", e.what());
-        return 2;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "photon-view: %s\n", e.what());
-        return 1;
-    }
+    return photon::runProgram("photon-view", [&] { return photon::run(argc, argv); });
 }
