@@ -52,9 +52,29 @@ for step in "$@"; do
           -o "$out/view.png" --stats "$out/view-$view.json" -q
         summary+=("view $view: gather median $(python3 -c "import json;print(json.load(open('$out/view-$view.json'))['stages']['gather']['median_ms'])") ms")
       done ;;
+    progressive)
+      $bin/photon-bench --backends cuda,vulkan --resolutions 1920x1080,3840x2160 --photons 1000000 \
+        --estimator progressive --frames 64 --warmup 1 --json "$out/progressive.json" | tee "$out/progressive.log" ;;
+    viewer)
+      # The viewer's frame loop rendering offscreen (no display here), validated first.
+      $bin/photon-view scenes/cornell.json --offscreen --frames 30 --validation --screenshot "$out/view-nvidia.png" \
+        >"$out/viewer.log" 2>&1; summary+=("viewer validated run: exit $? $(tail -1 "$out/viewer.log")")
+      for r in 640x480 1920x1080; do
+        w=${r%x*}; h=${r#*x}
+        for v in final dots; do
+          $bin/photon-view scenes/cornell.json --offscreen --frames 300 --width $w --height $h --photons 1000000 \
+            --view $v --stats "$out/view-$v-$r.json" >>"$out/viewer.log" 2>&1
+          summary+=("viewer $v $r: $(tail -1 "$out/viewer.log")")
+        done
+      done ;;
     render)
-      $bin/photon-render --backend cuda --width 1280 --height 960 --photons 2000000 --frames 64 -o "$out/cornell.png" \
-        --stats "$out/cornell-stats.json" -q ;;
+      for scene in cornell mirrors; do
+        $bin/photon-render scenes/$scene.json --backend cuda --width 1280 --height 960 --photons 2000000 --frames 256 \
+          -o "$out/$scene.png" --stats "$out/$scene-stats.json" -q
+      done ;;
+      bundle)
+      # Only 8 files come back: everything but the pictures goes into one archive.
+      (cd "$out" && tar czf results.tgz --exclude results.tgz --exclude '*.png' --exclude '*.exr' . ) ;;
   esac
 done
 printf '%s\n' "${summary[@]}"
