@@ -74,7 +74,8 @@ for step in "$@"; do
       done ;;
       bundle)
       # Only 8 files come back: everything but the pictures goes into one archive.
-      (cd "$out" && tar czf results.tgz --exclude results.tgz --exclude '*.png' --exclude '*.exr' . ) ;;
+      (cd "$out" && tar czf /tmp/results.tgz --exclude '*.png' --exclude '*.exr' . &&
+        find . -type f ! -name '*.png' -delete && mv /tmp/results.tgz .) ;;
   esac
 done
 printf '%s\n' "${summary[@]}"
