@@ -62,8 +62,12 @@ PH_FN vec3 directLight(BUF_PARAM vec3 x, vec3 n, vec3 wo, PH_IN(Material) m, PH_
             if (cosine <= 0.0f || isBlack(ls.radiance)) {
                 continue;
             }
+            // The shadow ray runs from where it starts, lifted off the surface, to the point on the
+            // light: measured from x instead, a grazing ray would end beyond the light's surface.
             vec3 origin = offsetRayOrigin(x, n, ls.direction);
-            if (!traceOccluded(BUF_ARG origin, ls.direction, ls.distance * (1.0f - 1.0e-4f))) {
+            vec3 toLight = ls.point - origin;
+            float distance = sqrt(dot(toLight, toLight));
+            if (!traceOccluded(BUF_ARG origin, toLight * (1.0f / distance), distance * (1.0f - 1.0e-4f))) {
                 sum += evalBsdf(m, wo, ls.direction, n) * ls.radiance * cosine;
             }
         }

@@ -17,10 +17,11 @@ struct PhotonEmission {
     vec3 power;  // flux carried, before dividing by the number of paths and the light's pick probability
 };
 
-// Direct-light sample: radiance arriving from `direction`, divided by the solid-angle density.
+// Direct-light sample: radiance arriving from `direction`, divided by the solid-angle density,
+// and the point on the light it comes from (what a shadow ray must reach unobstructed).
 struct LightSample {
     vec3 direction;
-    float distance;
+    vec3 point;
     vec3 radiance;
 };
 
@@ -234,12 +235,11 @@ PH_FN LightSample sampleDirectLight(PH_IN(Light) light, vec3 x, PH_INOUT(Rng) rn
     LightSample ls;
     ls.radiance = vec3(0.0f);
     ls.direction = vec3(0.0f, 0.0f, 1.0f);
-    ls.distance = 0.0f;
+    ls.point = light.position;
     if (light.type == LIGHT_POINT || light.type == LIGHT_SPOT) {
         vec3 d = light.position - x;
         float dist2 = dot(d, d);
-        ls.distance = sqrt(dist2);
-        ls.direction = d * (1.0f / ls.distance);
+        ls.direction = d * (1.0f / sqrt(dist2));
         ls.radiance = pointIntensity(light, -ls.direction) / dist2;
     } else if (light.type == LIGHT_SPHERE) {
         // Uniform over the cone that the sphere subtends: density 1 / (2π x).
@@ -250,15 +250,14 @@ PH_FN LightSample sampleDirectLight(PH_IN(Light) light, vec3 x, PH_INOUT(Rng) rn
         vec3 axis = unitVector(light.position - x);
         ls.direction = sampleUniformCone(axis, coneX, u1, u2);
         float t = intersectSphere(makeRay(x, ls.direction, FLOAT_MAX), light.position, light.radius, FLOAT_MAX);
-        ls.distance = t < FLOAT_MAX ? t : dot(light.position - x, ls.direction);
+        ls.point = x + ls.direction * (t < FLOAT_MAX ? t : dot(light.position - x, ls.direction));
         ls.radiance = areaLightRadiance(light) * (TWO_PI * coneX);
     } else {
         // Uniform by area: density d² / (cosθ_light · area) in solid angle.
-        vec3 p = light.position + u1 * light.edgeU + u2 * light.edgeV;
-        vec3 d = p - x;
+        ls.point = light.position + u1 * light.edgeU + u2 * light.edgeV;
+        vec3 d = ls.point - x;
         float dist2 = dot(d, d);
-        ls.distance = sqrt(dist2);
-        ls.direction = d * (1.0f / ls.distance);
+        ls.direction = d * (1.0f / sqrt(dist2));
         float cosLight = -dot(ls.direction, light.axis);
         if (cosLight > 0.0f) {
             ls.radiance = areaLightRadiance(light) * (cosLight * light.area / dist2);

@@ -3,6 +3,7 @@
 // objects, clipped to spot cones). Checked against brute force with the global pass.
 #include <gtest/gtest.h>
 
+#include "shared/eye_trace.h"
 #include "shared/lights.h"
 #include "shared/photon_trace.h"
 #include "test_util.h"
@@ -154,6 +155,34 @@ TEST(DirectLight, SpotIntensityMatchesEmittedPower) {
         sum += pointIntensity(s.lights[0], sampleUniformSphere(u1, u2)).x * 4.0 * 3.14159265358979;
     }
     EXPECT_NEAR(sum / kN, 7.0, 0.05);
+}
+
+}  // namespace
+}  // namespace photon
+
+namespace photon {
+namespace {
+
+// A floor lit by a quad light overhead: far along the floor, shadow rays graze and their lifted
+// origins must not carry them past the light's own surface, which would shadow the light itself.
+TEST(DirectLight, AreaLightsDoNotShadowThemselvesAtGrazingAngles) {
+    for (int kind = 0; kind < 2; ++kind) {
+        Scene s;
+        std::uint32_t floor = s.addMaterial("floor", makeDiffuse(vec3(0.5f)));
+        s.addPlane(vec3(0.0f), vec3(0, 1, 0), floor);
+        if (kind == 0) {
+            s.addQuadLight(vec3(-1, 6, -1), vec3(2, 0, 0), vec3(0, 0, 2), vec3(100.0f));
+        } else {
+            s.addSphereLight(vec3(0, 6, 0), 0.5f, vec3(100.0f));
+        }
+        test::SceneBindings sb(s);
+        for (float z : {-2.0f, -8.0f, -20.0f, -60.0f}) {
+            Rng rng = rngCreate(1u, 0u, 1u, STREAM_CAMERA);
+            vec3 x(0.5f, 0.0f, z);
+            vec3 lit = directLight(sb.bindings, x, vec3(0, 1, 0), vec3(0, 1, 0), sb.scene.materials[floor], rng);
+            EXPECT_GT(lit.x, 0.0f) << (kind == 0 ? "quad" : "sphere") << " light: floor at z = " << z << " sees none";
+        }
+    }
 }
 
 }  // namespace
