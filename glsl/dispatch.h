@@ -8,8 +8,13 @@
 PH_NAMESPACE_BEGIN
 
 PH_CONST uint GROUP_SIZE = 64u;       // invocations per workgroup of the per-photon stages
-PH_CONST uint PIXEL_TILE_X = 8u;      // the per-pixel stages run in tiles of 8 × 8 pixels: the
-PH_CONST uint PIXEL_TILE_Y = 8u;      // pixels of a subgroup lie close, and so do their cells
+// The per-pixel stages run in tiles of PIXEL_TILE_X × 8 pixels, so that the pixels of a subgroup
+// lie close, and so do their cells. The width is a build option (PHOTON_VULKAN_PIXEL_TILE_X).
+#ifndef PHOTON_PIXEL_TILE_X
+#define PHOTON_PIXEL_TILE_X 8
+#endif
+PH_CONST uint PIXEL_TILE_X = uint(PHOTON_PIXEL_TILE_X);
+PH_CONST uint PIXEL_TILE_Y = 8u;
 PH_CONST uint MAX_GROUPS_X = 65535u;  // the smallest maxComputeWorkGroupCount[0] Vulkan allows;
                                       // larger dispatches wrap into y
 PH_CONST uint SCAN_ITEMS = 4u;        // cells each invocation of the scan sums in sequence
