@@ -211,6 +211,26 @@ void setCompactPhotons([[maybe_unused]] Backend& backend, [[maybe_unused]] bool 
 #endif
 }
 
+// Median host time of Backend::image() (a synchronous copy of the accumulated image), through
+// pinned memory and straight into pageable memory.
+void timeReadback([[maybe_unused]] Backend& backend) {
+#ifdef PHOTON_HAVE_CUDA
+    for (bool pinned : {true, false}) {
+        LaunchConfig c;
+        c.pinnedReadback = pinned;
+        setCudaLaunchConfig(backend, c);
+        std::vector<double> ms;
+        for (int i = 0; i < 21; ++i) {
+            Clock::time_point t = Clock::now();
+            Image image = backend.image();
+            ms.push_back(msSince(t));
+        }
+        std::printf("  image readback (%s memory): %.2f ms median of 21\n", pinned ? "pinned" : "pageable", median(ms));
+    }
+    setCudaLaunchConfig(backend, LaunchConfig{});
+#endif
+}
+
 int run(int argc, char** argv) {
     CLI::App app{"Photon benchmark: per-stage times over scenes, resolutions, photon counts and backends",
                  "photon-bench"};
@@ -229,6 +249,7 @@ int run(int argc, char** argv) {
     std::uint32_t cpuFrames = 3;
     bool launchSweep = false;
     bool compare16 = false;
+    bool readback = false;
     BackendOptions options;
     app.add_option("--backends", backends, "Comma-separated: cpu,cuda,vulkan");
     app.add_option("--scenes", scenes, "Comma-separated scene names (files in --scenes-dir; cornell is built in)");
@@ -244,6 +265,7 @@ int run(int argc, char** argv) {
     app.add_option("--grid-sweep", gridSweep, "Comma-separated photon counts: grid build rate at 320x240");
     app.add_flag("--launch-sweep", launchSweep, "CUDA: sweep block shapes of every stage");
     app.add_flag("--compact-photons", compare16, "CUDA: also measure the 16-byte photon record");
+    app.add_flag("--readback", readback, "CUDA: time reading the image back through pinned and pageable memory");
     app.add_option("--device", options.device, "GPU to use");
     app.add_option("--json", jsonPath, "Write the rows as JSON");
     app.add_option("--csv", csvPath, "Write the rows as CSV");
@@ -337,6 +359,9 @@ int run(int argc, char** argv) {
                     sweepLaunchShapes(*backend, [&](const std::string& shape) { add(c.settings, shape); });
                 } else {
                     add(c.settings, c.variant);
+                }
+                if (readback && backendName == "cuda") {
+                    timeReadback(*backend);
                 }
                 if (compare16 && backendName == "cuda") {
                     setCompactPhotons(*backend, true);

@@ -222,12 +222,17 @@ private:
         b.accumulation = accumulation_.data();
     }
 
-    // One copy into pinned memory, then into the image.
+    // One copy into pinned memory, then into the image (or, to measure the difference, straight
+    // into the image's pageable memory).
     Image readPixels(const DeviceArray<glm::vec4>& pixels) {
+        Image image(width_, height_);
+        if (!config_.pinnedReadback) {
+            CUDA_CHECK(cudaMemcpy(image.pixels.data(), pixels.data(), pixels.bytes(), cudaMemcpyDeviceToHost), "readback");
+            return image;
+        }
         CUDA_CHECK(cudaMemcpyAsync(hostPixels_.data(), pixels.data(), pixels.bytes(), cudaMemcpyDeviceToHost, stream_),
                    "readback");
         CUDA_CHECK(cudaStreamSynchronize(stream_), "readback");
-        Image image(width_, height_);
         std::copy(hostPixels_.data(), hostPixels_.data() + hostPixels_.size(), image.pixels.begin());
         return image;
     }

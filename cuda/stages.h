@@ -19,6 +19,7 @@ struct LaunchConfig {
     std::uint32_t pixelBlockY = 8;
     std::uint32_t gridBlocks = 1056;  // blocks of the grid-stride loops over stored photons
     bool compactPhotons = false;      // gather from 16-byte photons (no side test, Lambertian only)
+    bool pinnedReadback = true;       // images come back through pinned memory (else pageable)
 };
 
 struct StageKernels {

@@ -4,6 +4,7 @@
 #include <cstdint>
 
 #include "vulkan/check.h"
+#include "vulkan/objects.h"
 
 namespace photon::viewer {
 namespace spirv {
@@ -99,25 +100,10 @@ void DisplayPass::createPipeline() {
     setInfo.pBindings = bindings;
     VK_CHECK(vkCreateDescriptorSetLayout(device, &setInfo, nullptr, &setLayout_));
 
-    VkPushConstantRange push{VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(DisplayPush)};
-    VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-    layoutInfo.setLayoutCount = 1;
-    layoutInfo.pSetLayouts = &setLayout_;
-    layoutInfo.pushConstantRangeCount = 1;
-    layoutInfo.pPushConstantRanges = &push;
-    VK_CHECK(vkCreatePipelineLayout(device, &layoutInfo, nullptr, &layout_));
-
-    VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2};
-    VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    poolInfo.maxSets = 1;
-    poolInfo.poolSizeCount = 1;
-    poolInfo.pPoolSizes = &size;
-    VK_CHECK(vkCreateDescriptorPool(device, &poolInfo, nullptr, &pool_));
-    VkDescriptorSetAllocateInfo allocation{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-    allocation.descriptorPool = pool_;
-    allocation.descriptorSetCount = 1;
-    allocation.pSetLayouts = &setLayout_;
-    VK_CHECK(vkAllocateDescriptorSets(device, &allocation, &set_));
+    layout_ = vk::createPipelineLayout(device, &setLayout_, 1, {VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(DisplayPush)});
+    vk::SingleDescriptorSet descriptors = vk::allocateSingleSet(device, setLayout_, 2);
+    pool_ = descriptors.pool;
+    set_ = descriptors.set;
 
     VkShaderModule vert = createModule(device, spirv::viewer_display_vert);
     VkShaderModule frag = createModule(device, spirv::viewer_display_frag);

@@ -4,6 +4,7 @@
 #include "glsl/viewer.h"
 #include "shared/bindings.h"
 #include "vulkan/check.h"
+#include "vulkan/objects.h"
 
 namespace photon::viewer {
 namespace spirv {
@@ -21,25 +22,10 @@ PhotonDots::PhotonDots(const vk::Context& context, const vk::VulkanBackend& back
 
     // Set 0 is the backend's layout, so that its descriptor set binds here unchanged.
     VkDescriptorSetLayout sets[2] = {backend.pipelines().setLayout, setLayout_};
-    VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(DotsPush)};
-    VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-    layoutInfo.setLayoutCount = 2;
-    layoutInfo.pSetLayouts = sets;
-    layoutInfo.pushConstantRangeCount = 1;
-    layoutInfo.pPushConstantRanges = &push;
-    VK_CHECK(vkCreatePipelineLayout(device, &layoutInfo, nullptr, &layout_));
-
-    VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
-    VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    poolInfo.maxSets = 1;
-    poolInfo.poolSizeCount = 1;
-    poolInfo.pPoolSizes = &size;
-    VK_CHECK(vkCreateDescriptorPool(device, &poolInfo, nullptr, &pool_));
-    VkDescriptorSetAllocateInfo allocation{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-    allocation.descriptorPool = pool_;
-    allocation.descriptorSetCount = 1;
-    allocation.pSetLayouts = &setLayout_;
-    VK_CHECK(vkAllocateDescriptorSets(device, &allocation, &set_));
+    layout_ = vk::createPipelineLayout(device, sets, 2, {VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(DotsPush)});
+    vk::SingleDescriptorSet descriptors = vk::allocateSingleSet(device, setLayout_, 1);
+    pool_ = descriptors.pool;
+    set_ = descriptors.set;
 
     VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
     moduleInfo.codeSize = sizeof(spirv::viewer_dots);

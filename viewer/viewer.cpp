@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "hud.h"
 #include "vulkan/check.h"
+#include "vulkan/objects.h"
 
 namespace photon::viewer {
 
@@ -99,17 +100,10 @@ void Viewer::destroyFrameResources() {
 
 void Viewer::createFrameResources() {
     VkDevice device = context_->device;
-    VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-    poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-    poolInfo.queueFamilyIndex = context_->queueFamily;
-    VK_CHECK(vkCreateCommandPool(device, &poolInfo, nullptr, &frame_.pool));
-    VkCommandBufferAllocateInfo allocation{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    allocation.commandPool = frame_.pool;
-    allocation.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    allocation.commandBufferCount = 1;
-    VK_CHECK(vkAllocateCommandBuffers(device, &allocation, &frame_.cmd));
-    VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    VK_CHECK(vkCreateFence(device, &fenceInfo, nullptr, &frame_.done));
+    vk::CommandBuffer commands = vk::createCommandBuffer(device, context_->queueFamily);
+    frame_.pool = commands.pool;
+    frame_.cmd = commands.cmd;
+    frame_.done = vk::createFence(device);
     VkSemaphoreCreateInfo semaphoreInfo{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
     VK_CHECK(vkCreateSemaphore(device, &semaphoreInfo, nullptr, &frame_.acquired));
 }

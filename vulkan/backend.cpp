@@ -7,23 +7,17 @@
 
 #include "check.h"
 #include "glsl/dispatch.h"
+#include "objects.h"
 
 namespace photon::vk {
 
 VulkanBackend::VulkanBackend(std::shared_ptr<Context> context)
     : context_(std::move(context)), transfers_(*context_), pipelines_(*context_) {
     VkDevice device = context_->device;
-    VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-    poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-    poolInfo.queueFamilyIndex = context_->queueFamily;
-    VK_CHECK(vkCreateCommandPool(device, &poolInfo, nullptr, &frame_.pool));
-    VkCommandBufferAllocateInfo allocation{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    allocation.commandPool = frame_.pool;
-    allocation.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    allocation.commandBufferCount = 1;
-    VK_CHECK(vkAllocateCommandBuffers(device, &allocation, &frame_.cmd));
-    VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    VK_CHECK(vkCreateFence(device, &fenceInfo, nullptr, &frame_.done));
+    CommandBuffer commands = createCommandBuffer(device, context_->queueFamily);
+    frame_.pool = commands.pool;
+    frame_.cmd = commands.cmd;
+    frame_.done = createFence(device);
     VkQueryPoolCreateInfo queryInfo{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
     queryInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
     queryInfo.queryCount = kTimestampCount;
