@@ -19,26 +19,32 @@ STAGES = ["tracePhotons", "buildGrid", "tracePixels", "gather", "accumulate"]
 COLOURS = ["#4e79a7", "#f28e2b", "#59a14f", "#e15759", "#b07aa1"]
 
 
-def rows_of(path):
-    with open(path) as f:
-        return json.load(f)["rows"]
+def rows_of(paths):
+    rows = []
+    for path in paths.split(","):
+        with open(path) as f:
+            rows += json.load(f)["rows"]
+    return rows
 
 
 def cpu_vs_gpu(rows, out):
     fig, ax = plt.subplots(figsize=(7, 4.2), dpi=110)
-    for backend in sorted({r["backend"] for r in rows}):
+    labelled = False
+    for backend, device in sorted({(r["backend"], r["device"]) for r in rows}):
         pts = sorted((r["width"] * r["height"], r["frame_ms"], f'{r["width"]}x{r["height"]}')
-                     for r in rows if r["backend"] == backend)
-        device = next(r["device"] for r in rows if r["backend"] == backend)
-        ax.plot([p[0] / 1e6 for p in pts], [p[1] for p in pts], marker="o", label=f"{backend}: {device}")
-        for p in pts:
-            if backend == "cpu":
+                     for r in rows if r["backend"] == backend and r["device"] == device)
+        photons = pts and next(r["photons"] for r in rows if r["backend"] == backend and r["device"] == device)
+        ax.plot([p[0] / 1e6 for p in pts], [p[1] for p in pts], marker="o",
+                label=f"{backend}: {device}, {photons / 1e6:g}M photons")
+        if not labelled:
+            for p in pts:
                 ax.annotate(p[2], (p[0] / 1e6, p[1]), textcoords="offset points", xytext=(4, 4), fontsize=7)
+            labelled = True
     ax.set_xlabel("megapixels")
     ax.set_ylabel("frame time (ms, log scale)")
     ax.set_yscale("log")
-    photons = rows[0]["photons"]
-    ax.set_title(f'{rows[0]["scene"]}: one frame, {photons / 1e6:g}M photons')
+    photons = sorted({r["photons"] / 1e6 for r in rows})
+    ax.set_title(f'{rows[0]["scene"]}: one frame, ' + " / ".join(f"{p:g}M" for p in photons) + " photons (see legend)")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()
@@ -57,8 +63,9 @@ def stages(rows, out):
         ax.text(total, y, f" {total:.2f} ms", va="center", fontsize=8)
     ax.invert_yaxis()
     ax.set_xlabel("milliseconds per frame (median)")
-    ax.set_title(f'{rows[0]["scene"]}, {rows[0]["photons"] / 1e6:g}M photons per frame, {rows[0]["device"]}', fontsize=9)
-    ax.legend(fontsize=7, ncol=5, loc="upper center", bbox_to_anchor=(0.5, -0.3))
+    devices = " / ".join(sorted({r["device"] for r in rows}))
+    ax.set_title(f'{rows[0]["scene"]}, {rows[0]["photons"] / 1e6:g}M photons per frame, {devices}', fontsize=9)
+    ax.legend(fontsize=7, ncol=5, loc="upper center", bbox_to_anchor=(0.5, -0.12 - 0.6 / len(rows)))
     ax.set_xlim(0, max(left) * 1.25)
     fig.tight_layout()
     fig.savefig(os.path.join(out, "stages.png"))
@@ -66,8 +73,8 @@ def stages(rows, out):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("series", help="photon-bench JSON over resolutions and backends")
-    parser.add_argument("stages", help="photon-bench JSON whose rows to break down by stage")
+    parser.add_argument("series", help="photon-bench JSON over resolutions and backends (comma-separated files)")
+    parser.add_argument("stages", help="photon-bench JSON whose rows to break down by stage (comma-separated files)")
     parser.add_argument("--out", default="docs")
     args = parser.parse_args()
     cpu_vs_gpu(rows_of(args.series), args.out)
