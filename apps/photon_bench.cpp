@@ -203,22 +203,28 @@ void sweepLaunchShapes([[maybe_unused]] Backend& backend, [[maybe_unused]] const
 #endif
 }
 
-void setCompactPhotons([[maybe_unused]] Backend& backend, [[maybe_unused]] bool compact) {
+// The CUDA backend's experiments (no effect on other backends).
+struct CudaVariant {
+    bool compactPhotons = false;
+    bool radixSortGrid = false;
+    bool pageableReadback = false;
+};
+
+void setCudaVariant([[maybe_unused]] Backend& backend, [[maybe_unused]] const CudaVariant& v) {
 #ifdef PHOTON_HAVE_CUDA
     LaunchConfig c;
-    c.compactPhotons = compact;
+    c.compactPhotons = v.compactPhotons;
+    c.radixSortGrid = v.radixSortGrid;
+    c.pinnedReadback = !v.pageableReadback;
     setCudaLaunchConfig(backend, c);
 #endif
 }
 
 // Median host time of Backend::image() (a synchronous copy of the accumulated image), through
 // pinned memory and straight into pageable memory.
-void timeReadback([[maybe_unused]] Backend& backend) {
-#ifdef PHOTON_HAVE_CUDA
+void timeReadback(Backend& backend) {
     for (bool pinned : {true, false}) {
-        LaunchConfig c;
-        c.pinnedReadback = pinned;
-        setCudaLaunchConfig(backend, c);
+        setCudaVariant(backend, {false, false, !pinned});
         std::vector<double> ms;
         for (int i = 0; i < 21; ++i) {
             Clock::time_point t = Clock::now();
@@ -227,8 +233,7 @@ void timeReadback([[maybe_unused]] Backend& backend) {
         }
         std::printf("  image readback (%s memory): %.2f ms median of 21\n", pinned ? "pinned" : "pageable", median(ms));
     }
-    setCudaLaunchConfig(backend, LaunchConfig{});
-#endif
+    setCudaVariant(backend, {});
 }
 
 int run(int argc, char** argv) {
@@ -250,6 +255,7 @@ int run(int argc, char** argv) {
     bool launchSweep = false;
     bool compare16 = false;
     bool readback = false;
+    bool radixGrid = false;
     BackendOptions options;
     app.add_option("--backends", backends, "Comma-separated: cpu,cuda,vulkan");
     app.add_option("--scenes", scenes, "Comma-separated scene names (files in --scenes-dir; cornell is built in)");
@@ -266,6 +272,7 @@ int run(int argc, char** argv) {
     app.add_flag("--launch-sweep", launchSweep, "CUDA: sweep block shapes of every stage");
     app.add_flag("--compact-photons", compare16, "CUDA: also measure the 16-byte photon record");
     app.add_flag("--readback", readback, "CUDA: time reading the image back through pinned and pageable memory");
+    app.add_flag("--radix-grid", radixGrid, "CUDA: also measure the grid ordered by CUB's radix sort");
     app.add_option("--device", options.device, "GPU to use");
     app.add_option("--json", jsonPath, "Write the rows as JSON");
     app.add_option("--csv", csvPath, "Write the rows as CSV");
@@ -363,10 +370,15 @@ int run(int argc, char** argv) {
                 if (readback && backendName == "cuda") {
                     timeReadback(*backend);
                 }
+                if (radixGrid && backendName == "cuda") {
+                    setCudaVariant(*backend, {false, true, false});
+                    add(c.settings, (c.variant.empty() ? "" : c.variant + " ") + "radix-sort grid");
+                    setCudaVariant(*backend, {});
+                }
                 if (compare16 && backendName == "cuda") {
-                    setCompactPhotons(*backend, true);
+                    setCudaVariant(*backend, {true, false, false});
                     add(c.settings, (c.variant.empty() ? "" : c.variant + " ") + "16-byte photons");
-                    setCompactPhotons(*backend, false);
+                    setCudaVariant(*backend, {});
                 }
             }
         }

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "cell_scan.h"
+#include "cell_sort.h"
 #include "cuda_check.h"
 #include "device_memory.h"
 
@@ -157,6 +158,13 @@ protected:
         kernels.tracePhotons(b, params.globalPaths + params.causticPaths, config_, stream_);
         CUDA_CHECK(cudaEventRecord(events_[kPhotonsTraced], stream_), "tracePhotons");
 
+        if (config_.radixSortGrid) {
+            // CUB's sort takes its item count on the host: this variant waits for the photon pass.
+            CUDA_CHECK(cudaMemcpyAsync(counters_.data(), deviceCounters_.data(), counters_.bytes(),
+                                       cudaMemcpyDeviceToHost, stream_),
+                       "buildGrid (sort)");
+            CUDA_CHECK(cudaStreamSynchronize(stream_), "buildGrid (sort)");
+        }
         for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
             const GridParams& g = params.grids[m];
             if (g.photonCapacity == 0) {
@@ -164,7 +172,21 @@ protected:
             }
             kernels.countCells(b, m, config_, stream_);
             scan_.exclusiveSum(cellCounts_.data() + g.cellOffset, cellStart_.data() + g.cellOffset, g.cellCount + 1, stream_);
-            kernels.scatterPhotons(b, m, config_, stream_);
+            if (config_.radixSortGrid) {
+                std::uint32_t n = std::min(counters_[COUNTER_STORED_GLOBAL + m], g.photonCapacity);
+                int bits = 1;
+                while ((1ull << bits) < g.cellCount) {
+                    bits += 1;
+                }
+                sort_.reserve(g.photonCapacity);
+                sort_.sort(photonKeys_.data() + g.photonOffset, photons_.data() + g.photonOffset,
+                           sortedPhotons_.data() + g.photonOffset, n, bits, stream_);
+                CUDA_CHECK(cudaMemsetAsync(cellCounts_.data() + g.cellOffset, 0, (g.cellCount + 1) * sizeof(std::uint32_t),
+                                           stream_),
+                           "buildGrid (sort)");
+            } else {
+                kernels.scatterPhotons(b, m, config_, stream_);
+            }
         }
         CUDA_CHECK(cudaEventRecord(events_[kGridBuilt], stream_), "buildGrid");
 
@@ -263,6 +285,7 @@ private:
     DeviceArray<std::uint32_t> cellCounts_;
     DeviceArray<std::uint32_t> cellStart_;
     CellScan scan_;
+    CellSort sort_;  // LaunchConfig::radixSortGrid only
     DeviceArray<std::uint32_t> deviceCounters_;
     PinnedArray<std::uint32_t> counters_;  // last frame's counters
     // Image.

@@ -20,6 +20,7 @@ struct LaunchConfig {
     std::uint32_t gridBlocks = 1056;  // blocks of the grid-stride loops over stored photons
     bool compactPhotons = false;      // gather from 16-byte photons (no side test, Lambertian only)
     bool pinnedReadback = true;       // images come back through pinned memory (else pageable)
+    bool radixSortGrid = false;       // buildGrid orders photons by CUB radix sort, not the scatter
 };
 
 struct StageKernels {

@@ -7,6 +7,7 @@
 
 #include "apps/backends.h"
 #include "backend_compare.h"
+#include "core/error.h"
 #include "core/scene_loader.h"
 #include "cuda/cuda_backend.h"
 
@@ -60,6 +61,38 @@ TEST_F(CudaVsCpu, EveryEstimatorAndGridInTheParityBuild) {
             compare(scene, s, std::string("cuda-parity-") + toString(e) + "-" + toString(g), true);
         }
     }
+}
+
+TEST_F(CudaVsCpu, RadixSortGridMatchesToo) {
+    Scene scene = defaultScene();
+    RenderSettings s = small();
+    auto cpu = createBackend("cpu");
+    auto cuda = createBackend("cuda", BackendOptions{"", false, true});
+    LaunchConfig radix;
+    radix.radixSortGrid = true;
+    setCudaLaunchConfig(*cuda, radix);
+    test::StageOutputs expected = test::renderStages(*cpu, scene, s);
+    test::StageOutputs actual = test::renderStages(*cuda, scene, s);
+    test::expectSamePhotonMaps(actual.maps, expected.maps);
+    test::expectImagesClose(actual.image, expected.image, 1e-4, "cuda-radix-grid");
+}
+
+TEST_F(CudaVsCpu, TooLargeRequestsAreRefusedBeforeWork) {
+    Scene scene = defaultScene();
+    RenderSettings s = scene.render;
+    s.width = 16384;
+    s.height = 16384;
+    s.photons = 1u << 28;
+    auto cuda = createBackend("cuda");
+    cuda->setScene(scene);
+    cuda->setSettings(s);
+    EXPECT_THROW(cuda->prepare(), InputError);
+    s.width = 64;
+    s.height = 48;
+    s.photons = 10000;
+    cuda->setSettings(s);
+    cuda->renderFrame();
+    EXPECT_TRUE(allFinite(cuda->image()));
 }
 
 TEST_F(CudaVsCpu, FinalGatherInTheParityBuild) {
