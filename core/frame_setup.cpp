@@ -37,8 +37,10 @@ PhotonBudget planPhotons(const Scene& scene, const RenderSettings& settings) {
     b.globalPaths = settings.photons - b.causticPaths;
     // A global path stores at most one photon per bounce; Russian roulette makes the mean small.
     // A caustic path stores at most one photon: at its first non-specular surface.
+    // Capacities stay below 2^31 photons so that offsets fit in 32 bits; a request that large
+    // fails the backends' memory check anyway.
     double perPath = std::min<double>(settings.photonCapacity, settings.maxPhotonDepth);
-    b.capacity[MAP_GLOBAL] = static_cast<std::uint32_t>(std::ceil(double(b.globalPaths) * perPath));
+    b.capacity[MAP_GLOBAL] = static_cast<std::uint32_t>(std::min(std::ceil(double(b.globalPaths) * perPath), 2147483647.0));
     if (b.splitCaustics) {
         b.capacity[MAP_CAUSTIC] = b.causticPaths;
     } else {

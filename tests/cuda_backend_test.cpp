@@ -83,6 +83,7 @@ TEST_F(CudaVsCpu, TooLargeRequestsAreRefusedBeforeWork) {
     s.width = 16384;
     s.height = 16384;
     s.photons = 1u << 28;
+    s.photonCapacity = 8.0f;  // 1.2G photons and 270M pixels: over 100 GB
     auto cuda = createBackend("cuda");
     cuda->setScene(scene);
     cuda->setSettings(s);
@@ -90,6 +91,7 @@ TEST_F(CudaVsCpu, TooLargeRequestsAreRefusedBeforeWork) {
     s.width = 64;
     s.height = 48;
     s.photons = 10000;
+    s.photonCapacity = 4.0f;
     cuda->setSettings(s);
     cuda->renderFrame();
     EXPECT_TRUE(allFinite(cuda->image()));
