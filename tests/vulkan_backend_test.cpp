@@ -24,6 +24,7 @@
 #include "apps/backends.h"
 #include "core/error.h"
 #include "core/scene_loader.h"
+#include "backend_compare.h"
 #include "test_util.h"
 #include "vulkan/context.h"
 #include "vulkan/vulkan_backend.h"
@@ -76,48 +77,6 @@ RenderSettings smallSettings(std::uint32_t photons = 40000) {
     s.causticRadius = 0.05f;
     s.gatherBudget = 0;
     return s;
-}
-
-// Photons of one cell sorted by their bytes, so that two maps compare regardless of append order.
-std::vector<Photon> sortedCell(const std::vector<Photon>& photons, std::uint32_t begin, std::uint32_t end) {
-    std::vector<Photon> cell(photons.begin() + begin, photons.begin() + end);
-    std::sort(cell.begin(), cell.end(),
-              [](const Photon& a, const Photon& b) { return std::memcmp(&a, &b, sizeof(Photon)) < 0; });
-    return cell;
-}
-
-void expectSameMaps(const PhotonMaps& expected, const PhotonMaps& actual, const std::string& what) {
-    for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
-        const char* map = m == MAP_GLOBAL ? "global" : "caustic";
-        ASSERT_EQ(expected.photons[m].size(), actual.photons[m].size()) << what << ": " << map << " photons";
-        ASSERT_EQ(expected.cellStart[m].size(), actual.cellStart[m].size()) << what << ": " << map << " cells";
-        std::size_t cellMismatches = 0;
-        std::size_t photonMismatches = 0;
-        for (std::size_t c = 0; c + 1 < expected.cellStart[m].size(); ++c) {
-            if (expected.cellStart[m][c] != actual.cellStart[m][c] || expected.cellStart[m][c + 1] != actual.cellStart[m][c + 1]) {
-                cellMismatches += 1;
-                continue;
-            }
-            std::vector<Photon> a = sortedCell(expected.photons[m], expected.cellStart[m][c], expected.cellStart[m][c + 1]);
-            std::vector<Photon> b = sortedCell(actual.photons[m], actual.cellStart[m][c], actual.cellStart[m][c + 1]);
-            for (std::size_t i = 0; i < a.size(); ++i) {
-                photonMismatches += std::memcmp(&a[i], &b[i], sizeof(Photon)) != 0 ? 1 : 0;
-            }
-        }
-        EXPECT_EQ(cellMismatches, 0u) << what << ": " << map << " cells whose range differs";
-        EXPECT_EQ(photonMismatches, 0u) << what << ": " << map << " photons that differ in their cell";
-        std::printf("%s: %s map %zu photons, %zu cells, identical\n", what.c_str(), map, actual.photons[m].size(),
-                    actual.cellStart[m].size() - 1);
-    }
-}
-
-void expectSameHitPoints(const std::vector<HitPoint>& expected, const std::vector<HitPoint>& actual, const std::string& what) {
-    ASSERT_EQ(expected.size(), actual.size()) << what;
-    std::size_t mismatches = 0;
-    for (std::size_t i = 0; i < expected.size(); ++i) {
-        mismatches += std::memcmp(&expected[i], &actual[i], sizeof(HitPoint)) != 0 ? 1 : 0;
-    }
-    EXPECT_EQ(mismatches, 0u) << what << ": hit points that differ (of " << expected.size() << ")";
 }
 
 std::size_t differingPixels(const Image& a, const Image& b) {
@@ -186,11 +145,12 @@ protected:
             std::printf("%s: not lavapipe, bit-exact stages not compared\n", what.c_str());
             return;
         }
+        SCOPED_TRACE(what);
         if (maps) {
-            expectSameMaps(cpu_->readPhotonMaps(), vulkan_->readPhotonMaps(), what);
+            test::expectSamePhotonMaps(vulkan_->readPhotonMaps(), cpu_->readPhotonMaps());
         }
         if (hitPoints) {
-            expectSameHitPoints(cpu_->readHitPoints(), vulkan_->readHitPoints(), what);
+            test::expectSameHitPoints(vulkan_->readHitPoints(), cpu_->readHitPoints());
         }
     }
 
