@@ -203,19 +203,11 @@ void sweepLaunchShapes([[maybe_unused]] Backend& backend, [[maybe_unused]] const
 #endif
 }
 
-// The CUDA backend's experiments (no effect on other backends).
-struct CudaVariant {
-    bool compactPhotons = false;
-    bool radixSortGrid = false;
-    bool pageableReadback = false;
-};
-
-void setCudaVariant([[maybe_unused]] Backend& backend, [[maybe_unused]] const CudaVariant& v) {
+// The CUDA backend's readback through pageable memory instead of pinned (no effect elsewhere).
+void setPageableReadback([[maybe_unused]] Backend& backend, [[maybe_unused]] bool pageable) {
 #ifdef PHOTON_HAVE_CUDA
     LaunchConfig c;
-    c.compactPhotons = v.compactPhotons;
-    c.radixSortGrid = v.radixSortGrid;
-    c.pinnedReadback = !v.pageableReadback;
+    c.pinnedReadback = !pageable;
     setCudaLaunchConfig(backend, c);
 #endif
 }
@@ -224,7 +216,7 @@ void setCudaVariant([[maybe_unused]] Backend& backend, [[maybe_unused]] const Cu
 // pinned memory and straight into pageable memory.
 void timeReadback(Backend& backend) {
     for (bool pinned : {true, false}) {
-        setCudaVariant(backend, {false, false, !pinned});
+        setPageableReadback(backend, !pinned);
         std::vector<double> ms;
         for (int i = 0; i < 21; ++i) {
             Clock::time_point t = Clock::now();
@@ -233,7 +225,7 @@ void timeReadback(Backend& backend) {
         }
         std::printf("  image readback (%s memory): %.2f ms median of 21\n", pinned ? "pinned" : "pageable", median(ms));
     }
-    setCudaVariant(backend, {});
+    setPageableReadback(backend, false);
 }
 
 int run(int argc, char** argv) {
@@ -253,9 +245,7 @@ int run(int argc, char** argv) {
     std::uint32_t warmup = 3;
     std::uint32_t cpuFrames = 3;
     bool launchSweep = false;
-    bool compare16 = false;
     bool readback = false;
-    bool radixGrid = false;
     BackendOptions options;
     app.add_option("--backends", backends, "Comma-separated: cpu,cuda,vulkan");
     app.add_option("--scenes", scenes, "Comma-separated scene names (files in --scenes-dir; cornell is built in)");
@@ -270,9 +260,7 @@ int run(int argc, char** argv) {
                                    "(cell_size, gather_budget, radius, caustic_radius, caustic_fraction, estimator, ...)");
     app.add_option("--grid-sweep", gridSweep, "Comma-separated photon counts: grid build rate at 320x240");
     app.add_flag("--launch-sweep", launchSweep, "CUDA: sweep block shapes of every stage");
-    app.add_flag("--compact-photons", compare16, "CUDA: also measure the 16-byte photon record");
     app.add_flag("--readback", readback, "CUDA: time reading the image back through pinned and pageable memory");
-    app.add_flag("--radix-grid", radixGrid, "CUDA: also measure the grid ordered by CUB's radix sort");
     app.add_option("--device", options.device, "GPU to use");
     app.add_option("--json", jsonPath, "Write the rows as JSON");
     app.add_option("--csv", csvPath, "Write the rows as CSV");
@@ -369,16 +357,6 @@ int run(int argc, char** argv) {
                 }
                 if (readback && backendName == "cuda") {
                     timeReadback(*backend);
-                }
-                if (radixGrid && backendName == "cuda") {
-                    setCudaVariant(*backend, {false, true, false});
-                    add(c.settings, (c.variant.empty() ? "" : c.variant + " ") + "radix-sort grid");
-                    setCudaVariant(*backend, {});
-                }
-                if (compare16 && backendName == "cuda") {
-                    setCudaVariant(*backend, {true, false, false});
-                    add(c.settings, (c.variant.empty() ? "" : c.variant + " ") + "16-byte photons");
-                    setCudaVariant(*backend, {});
                 }
             }
         }

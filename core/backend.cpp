@@ -58,29 +58,35 @@ void Backend::prepare() {
     if (scene_.lights.empty()) {
         throw InputError("the scene has no lights");
     }
+    if (!sceneDirty_ && !allocationDirty_) {
+        return;
+    }
+    PhotonBudget budget = planPhotons(scene_, settings_);
+    for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
+        budget.capacity[m] = std::max(budget.capacity[m], grownCapacity_[m]);
+    }
+    BufferPlan plan = planBuffers(scene_, budget, settings_.width, settings_.height);
+    adjustPlan(plan, budget);
+    checkMemory(plan, memoryLimits(), settings_.width, settings_.height);
     if (sceneDirty_) {
-        uploadScene(scene_);
+        uploadScene(scene_, plan);
         sceneDirty_ = false;
     }
-    if (allocationDirty_) {
-        PhotonBudget budget = planPhotons(scene_, settings_);
-        for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
-            budget.capacity[m] = std::max(budget.capacity[m], grownCapacity_[m]);
-        }
-        bool same = allocatedWidth_ == settings_.width && allocatedHeight_ == settings_.height &&
-                    budget.globalPaths == allocatedBudget_.globalPaths &&
-                    budget.causticPaths == allocatedBudget_.causticPaths &&
-                    std::equal(std::begin(budget.capacity), std::end(budget.capacity), std::begin(allocatedBudget_.capacity)) &&
-                    std::equal(std::begin(budget.cells), std::end(budget.cells), std::begin(allocatedBudget_.cells));
-        if (!same) {
-            allocate(budget, settings_.width, settings_.height);
-            allocatedBudget_ = budget;
-            allocatedWidth_ = settings_.width;
-            allocatedHeight_ = settings_.height;
-        }
-        budget_ = budget;
-        allocationDirty_ = false;
+    bool same = std::equal(std::begin(budget.cells), std::end(budget.cells), std::begin(allocatedBudget_.cells)) &&
+                allocatedWidth_ == settings_.width && allocatedHeight_ == settings_.height &&
+                plan.scratchBytes == plan_.scratchBytes;
+    for (const BufferInfo& info : kBuffers) {
+        same = same && (info.size == BUFFER_PER_SCENE || plan.elements[info.binding] == plan_.elements[info.binding]);
     }
+    if (!same) {
+        allocate(plan, budget, settings_.width, settings_.height);
+        allocatedBudget_ = budget;
+        allocatedWidth_ = settings_.width;
+        allocatedHeight_ = settings_.height;
+    }
+    plan_ = plan;
+    budget_ = budget;
+    allocationDirty_ = false;
 }
 
 void Backend::renderFrame() {
@@ -100,8 +106,15 @@ const FrameParams& Backend::beginFrame() {
     return params_;
 }
 
-bool Backend::endFrame(const FrameStats& stats, bool mayRepeat) {
-    stats_ = stats;
+bool Backend::endFrame(const FrameResult& result, bool mayRepeat) {
+    stats_ = FrameStats{};
+    stats_.ms = result.ms;
+    for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
+        stats_.stored[m] = result.counters[COUNTER_STORED_GLOBAL + m];
+        stats_.capacity[m] = params_.grids[m].photonCapacity;
+    }
+    stats_.emitted[MAP_GLOBAL] = params_.globalPaths;
+    stats_.emitted[MAP_CAUSTIC] = params_.causticPaths;
     bool dropped = growPhotonMaps();
     if (dropped && accumulated_ == 0 && mayRepeat) {
         return false;
@@ -120,7 +133,7 @@ bool Backend::growPhotonMaps() {
     for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
         std::uint32_t stored = stats_.stored[m];
         std::uint32_t capacity = stats_.capacity[m];
-        if (capacity == NONE || double(stored) <= 0.8 * double(capacity)) {
+        if (double(stored) <= 0.8 * double(capacity)) {
             continue;
         }
         dropped = dropped || stored > capacity;
@@ -134,7 +147,42 @@ Image Backend::image() {
     if (accumulated_ == 0) {
         return Image(settings_.width, settings_.height);
     }
-    return readAccumulation();
+    return readImage(BINDING_ACCUMULATION);
+}
+
+Image Backend::readFrame() { return readImage(BINDING_FRAME); }
+
+Image Backend::readImage(std::uint32_t binding) {
+    Image image(allocatedWidth_, allocatedHeight_);
+    if (!image.pixels.empty()) {
+        readBuffer(binding, 0, image.pixels.size() * sizeof(glm::vec4), image.pixels.data());
+    }
+    return image;
+}
+
+std::vector<HitPoint> Backend::readHitPoints() {
+    std::vector<HitPoint> hitPoints(std::size_t(allocatedWidth_) * allocatedHeight_);
+    if (!hitPoints.empty()) {
+        readBuffer(BINDING_HIT_POINTS, 0, hitPoints.size() * sizeof(HitPoint), hitPoints.data());
+    }
+    return hitPoints;
+}
+
+PhotonMaps Backend::readPhotonMaps() {
+    PhotonMaps maps;
+    for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
+        const GridParams& grid = params_.grids[m];
+        std::uint32_t stored = std::min(stats_.stored[m], grid.photonCapacity);
+        maps.photons[m].resize(stored);
+        if (stored > 0) {
+            readBuffer(BINDING_SORTED_PHOTONS, std::uint64_t(grid.photonOffset) * sizeof(Photon),
+                       std::uint64_t(stored) * sizeof(Photon), maps.photons[m].data());
+        }
+        maps.cellStart[m].resize(std::size_t(grid.cellCount) + 1);
+        readBuffer(BINDING_CELL_START, std::uint64_t(grid.cellOffset) * sizeof(std::uint32_t),
+                   maps.cellStart[m].size() * sizeof(std::uint32_t), maps.cellStart[m].data());
+    }
+    return maps;
 }
 
 }  // namespace photon

@@ -1,5 +1,7 @@
 // The one interface every program talks to. A backend (cpu/, cuda/, vulkan/) only allocates
-// buffers and schedules the stages; what a frame computes is decided here and in shared/.
+// buffers and schedules the stages; what a frame computes is decided here and in shared/, and
+// what it needs (core/buffers.h), its statistics and the readbacks of its results are worked out
+// here once for all backends.
 //
 // A frame runs five stages, named alike in every backend:
 //   tracePhotons  emit photons from the lights and follow them, appending to the two maps
@@ -14,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "buffers.h"
 #include "frame_setup.h"
 #include "image.h"
 #include "scene.h"
@@ -32,11 +35,17 @@ struct StageTimes {
     double total() const { return tracePhotons + buildGrid + tracePixels + gather + accumulate; }
 };
 
+// What a backend reports of a frame it ran: the stage times and the counters buffer.
+struct FrameResult {
+    StageTimes ms;
+    std::uint32_t counters[COUNTER_COUNT] = {};
+};
+
 struct FrameStats {
     StageTimes ms;
     std::uint32_t emitted[MAP_COUNT] = {};   // paths of the global and the caustic pass
     std::uint32_t stored[MAP_COUNT] = {};    // photons that reached each map
-    std::uint32_t capacity[MAP_COUNT] = {};  // room in each map (NONE: unbounded); photons beyond it were dropped
+    std::uint32_t capacity[MAP_COUNT] = {};  // room in each map; photons beyond it were dropped
 };
 
 // A readback of both photon maps: each map's photons in cell order, and its cell ranges
@@ -74,8 +83,9 @@ public:
     void setCamera(const CameraDesc& camera);
     void resetAccumulation();
 
-    // Uploads the scene and allocates for the settings if anything changed. Checks device limits
-    // (memory, binding sizes) first and throws InputError if the request cannot fit.
+    // Uploads the scene and allocates for the settings if anything changed. Checks the machine's
+    // limits (memory, buffer sizes) first and throws InputError, before any work, if the request
+    // cannot fit.
     void prepare();
     void renderFrame();
 
@@ -86,7 +96,7 @@ public:
     // the next frame repeats it with room for them (only if mayRepeat). renderFrame() is exactly
     // beginFrame(), runFrame(), endFrame(). Change nothing between the two calls.
     const FrameParams& beginFrame();
-    bool endFrame(const FrameStats& stats, bool mayRepeat = true);
+    bool endFrame(const FrameResult& result, bool mayRepeat = true);
 
     // The mean of the frames rendered since the last reset (linear radiance).
     Image image();
@@ -97,19 +107,30 @@ public:
     const CameraDesc& camera() const { return camera_; }
     const PhotonBudget& budget() const { return budget_; }
     const FrameParams& lastFrameParams() const { return params_; }
+    const BufferPlan& bufferPlan() const { return plan_; }
 
     // Stage outputs of the last frame, for tests and tools.
-    virtual PhotonMaps readPhotonMaps() = 0;
-    virtual std::vector<HitPoint> readHitPoints() = 0;
-    virtual Image readFrame() = 0;
+    PhotonMaps readPhotonMaps();
+    std::vector<HitPoint> readHitPoints();
+    Image readFrame();
+
+    // What this backend may allocate now (what it holds already counts as free).
+    virtual MemoryLimits memoryLimits() = 0;
 
 protected:
-    virtual void uploadScene(const Scene& scene) = 0;
-    virtual void allocate(const PhotonBudget& budget, std::uint32_t width, std::uint32_t height) = 0;
-    virtual FrameStats runFrame(const FrameParams& params) = 0;
-    virtual Image readAccumulation() = 0;
+    // Entries a backend adds for its own scheduling (Vulkan: the levels of its scan in cellStart).
+    virtual void adjustPlan(BufferPlan& plan, const PhotonBudget& budget) { (void)plan, (void)budget; }
+    // The scene's arrays (sceneArray()) into their buffers, sized as the plan says.
+    virtual void uploadScene(const Scene& scene, const BufferPlan& plan) = 0;
+    // Every buffer that is not the scene's, sized as the plan says; contents need not be kept.
+    virtual void allocate(const BufferPlan& plan, const PhotonBudget& budget, std::uint32_t width,
+                          std::uint32_t height) = 0;
+    virtual FrameResult runFrame(const FrameParams& params) = 0;
+    // `bytes` bytes of the buffer at `binding`, from byte `offset`, after every earlier frame.
+    virtual void readBuffer(std::uint32_t binding, std::uint64_t offset, std::uint64_t bytes, void* data) = 0;
 
 private:
+    Image readImage(std::uint32_t binding);
     // Grows a photon map that came within 80% of its capacity (GPU backends drop photons beyond
     // it). Returns true if photons were dropped this frame.
     bool growPhotonMaps();
@@ -127,6 +148,7 @@ private:
     std::uint32_t allocatedWidth_ = 0;
     std::uint32_t allocatedHeight_ = 0;
     PhotonBudget allocatedBudget_;
+    BufferPlan plan_;
     std::uint32_t grownCapacity_[MAP_COUNT] = {};  // capacities raised by growPhotonMaps()
     bool warnedDropped_ = false;
 };

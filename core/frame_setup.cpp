@@ -16,19 +16,20 @@ std::uint32_t nextPowerOfTwo(std::uint64_t n) {
     return static_cast<std::uint32_t>(std::min<std::uint64_t>(p, 1u << 30));
 }
 
-// Whether any surface reflects or refracts specularly (mirror, glass, a mirror coat): only then
-// can a photon path be a caustic one.
-bool anySpecular(const Scene& scene) {
-    return std::any_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) {
-        return m.type == MATERIAL_MIRROR || m.type == MATERIAL_GLASS || m.type == MATERIAL_REFLECTIVE;
-    });
+// Bits that hold every value below n (at least 1).
+std::uint32_t bitsBelow(std::uint64_t n) {
+    std::uint32_t bits = 1;
+    while (bits < 64 && (std::uint64_t(1) << bits) < n) {
+        bits += 1;
+    }
+    return bits;
 }
 
 }  // namespace
 
 PhotonBudget planPhotons(const Scene& scene, const RenderSettings& settings) {
     PhotonBudget b;
-    b.splitCaustics = scene.hasSpecular() && scene.targets.size() <= CAUSTIC_TARGETS_MAX &&
+    b.splitCaustics = scene.hasCausticTargets() && scene.targets.size() <= CAUSTIC_TARGETS_MAX &&
                       settings.causticFraction > 0.0f;
     if (b.splitCaustics) {
         b.causticPaths = static_cast<std::uint32_t>(std::lround(double(settings.photons) * settings.causticFraction));
@@ -44,7 +45,7 @@ PhotonBudget planPhotons(const Scene& scene, const RenderSettings& settings) {
     if (b.splitCaustics) {
         b.capacity[MAP_CAUSTIC] = b.causticPaths;
     } else {
-        b.capacity[MAP_CAUSTIC] = anySpecular(scene) ? b.globalPaths : 0u;
+        b.capacity[MAP_CAUSTIC] = scene.makesCausticPaths() ? b.globalPaths : 0u;
     }
     for (std::uint32_t map = 0; map < MAP_COUNT; ++map) {
         if (settings.grid == GridKind::Bounded) {
@@ -75,11 +76,8 @@ FrameParams makeFrameParams(const Scene& scene, const CameraDesc& camera, const 
     info.planeCount = static_cast<std::uint32_t>(scene.planes.size());
     info.quadCount = static_cast<std::uint32_t>(scene.quads.size());
     info.triangleCount = static_cast<std::uint32_t>(scene.triangles.size());
-    info.materialCount = static_cast<std::uint32_t>(scene.materials.size());
     info.lightCount = static_cast<std::uint32_t>(scene.lights.size());
     info.targetCount = budget.splitCaustics ? static_cast<std::uint32_t>(scene.targets.size()) : 0u;
-    info.boundsMin = scene.boundsMin;
-    info.boundsMax = scene.boundsMax;
     info.background = scene.background;
 
     bool progressive = settings.estimator == Estimator::Progressive;
@@ -102,6 +100,7 @@ FrameParams makeFrameParams(const Scene& scene, const CameraDesc& camera, const 
         g.cellOffset = budget.cellOffset(map);
         g.photonOffset = budget.photonOffset(map);
         g.photonCapacity = budget.capacity[map];
+        g.keyBits = bitsBelow(g.cellCount);
     }
 
     p.width = settings.width;
@@ -119,8 +118,9 @@ FrameParams makeFrameParams(const Scene& scene, const CameraDesc& camera, const 
     p.gatherRays = settings.gatherRays;
     p.lightSamples = settings.lightSamples;
     p.view = static_cast<std::uint32_t>(settings.view);
-    p.flags = (settings.pixelCenter ? FLAG_PIXEL_CENTER : 0u) | (budget.splitCaustics ? FLAG_SPLIT_CAUSTICS : 0u);
-    p.exposure = settings.exposure;
+    p.flags = (settings.pixelCenter ? FLAG_PIXEL_CENTER : 0u) | (budget.splitCaustics ? FLAG_SPLIT_CAUSTICS : 0u) |
+              (settings.deterministic ? FLAG_DETERMINISTIC : 0u);
+    p.photonIdBits = bitsBelow(budget.totalPaths()) + PHOTON_BOUNCE_BITS;
     p.accumulated = accumulated;
     p.gatherBudget = settings.gatherBudget;
     return p;

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "shared/constants.h"
+#include "shared/material.h"
 
 namespace photon {
 namespace {
@@ -193,9 +193,7 @@ void Scene::finalize() {
         lights.back().pickCdf = 1.0f;
     }
 
-    auto specular = [&](std::uint32_t m) {
-        return materials[m].type == MATERIAL_MIRROR || materials[m].type == MATERIAL_GLASS;
-    };
+    auto specular = [&](std::uint32_t m) { return surfaceIs(materials[m], SURFACE_CAUSTIC_CASTER); };
     targets.clear();
     glm::vec3 lo(FLOAT_MAX);
     glm::vec3 hi(-FLOAT_MAX);
@@ -247,14 +245,20 @@ Camera makeCamera(const CameraDesc& desc, std::uint32_t width, std::uint32_t hei
     return c;
 }
 
-void bindSceneArrays(Bindings& b, const Scene& scene) {
-    b.spheres = scene.spheres.data();
-    b.planes = scene.planes.data();
-    b.quads = scene.quads.data();
-    b.triangles = scene.triangles.data();
-    b.materials = scene.materials.data();
-    b.lights = scene.lights.data();
-    b.targets = scene.targets.data();
+bool Scene::makesCausticPaths() const {
+    return std::any_of(materials.begin(), materials.end(), [](const Material& m) { return photon::makesCausticPaths(m); });
 }
+
+#define PH_SCENE_ARRAY_CASE(NAME, b, T, name, access, sizeClass) \
+    PH_SCENE_ONLY_##sizeClass(if (binding == b) { return {scene.name.data(), scene.name.size()}; })
+
+HostArray sceneArray(const Scene& scene, std::uint32_t binding) {
+    PH_BUFFERS(PH_SCENE_ARRAY_CASE)
+    return {};
+}
+
+#define PH_BIND_SCENE_ARRAY(NAME, b, T, name, access, sizeClass) PH_SCENE_ONLY_##sizeClass(bindings.name = scene.name.data();)
+
+void bindSceneArrays(Bindings& bindings, const Scene& scene) { PH_BUFFERS(PH_BIND_SCENE_ARRAY) }
 
 }  // namespace photon

@@ -27,16 +27,20 @@ Material makeGlossy(glm::vec3 albedo, glm::vec3 specular, float roughness);  // 
 Material makeReflective(glm::vec3 albedo, glm::vec3 reflectance);  // Lambertian under a mirror coat
 Material makeEmitter(glm::vec3 radiance);
 
+// The rows of shared/bindings.h whose size is SCENE: one host array each, named as the buffer.
+#define PH_SCENE_ONLY_SCENE(...) __VA_ARGS__
+#define PH_SCENE_ONLY_PHOTON(...)
+#define PH_SCENE_ONLY_CELL(...)
+#define PH_SCENE_ONLY_PIXEL(...)
+#define PH_SCENE_ONLY_COUNTER(...)
+#define PH_SCENE_VECTOR(NAME, b, T, name, access, sizeClass) PH_SCENE_ONLY_##sizeClass(std::vector<T> name;)
+
 struct Scene {
     std::string name;
-    std::vector<Sphere> spheres;
-    std::vector<Plane> planes;
-    std::vector<Quad> quads;
-    std::vector<Triangle> triangles;
-    std::vector<Material> materials;
+    // spheres, planes, quads, triangles, materials, lights, and targets (by finalize(): bounding
+    // spheres of the bounded caustic casters, the targets of the caustic pass).
+    PH_BUFFERS(PH_SCENE_VECTOR)
     std::vector<std::string> materialNames;
-    std::vector<Light> lights;
-    std::vector<CausticTarget> targets;  // by finalize(): bounding spheres of mirror and glass objects
     CameraDesc camera;
     glm::vec3 background{0.0f};
     glm::vec3 boundsMin{0.0f};  // by finalize()
@@ -65,14 +69,24 @@ struct Scene {
     void finalize();
 
     float diagonal() const;
-    bool hasSpecular() const { return !targets.empty(); }
+    bool hasCausticTargets() const { return !targets.empty(); }
+    // Whether any surface reflects or refracts specularly (a caster or a mirror coat): only then
+    // can a photon path be a caustic one.
+    bool makesCausticPaths() const;
 };
+
+// A scene array by binding (any row of size SCENE): its elements, or nullptr for other rows.
+struct HostArray {
+    const void* data = nullptr;
+    std::size_t count = 0;
+};
+HostArray sceneArray(const Scene& scene, std::uint32_t binding);
 
 // The shared camera for an image of width × height.
 Camera makeCamera(const CameraDesc& desc, std::uint32_t width, std::uint32_t height);
 
-// Points the scene members of host-side Bindings (spheres ... targets) at the scene's arrays, for
-// running shared/ functions on the CPU.
+// Points the scene members of host-side Bindings at the scene's arrays, for running shared/
+// functions on the CPU.
 void bindSceneArrays(Bindings& bindings, const Scene& scene);
 
 }  // namespace photon

@@ -1,6 +1,8 @@
 #include "settings.h"
 
 #include <array>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 namespace photon {
@@ -9,28 +11,40 @@ namespace {
 template <typename E, std::size_t N>
 using Names = std::array<std::pair<E, const char*>, N>;
 
-constexpr Names<Estimator, 4> kEstimators{{{Estimator::Cell, "cell"},
+constexpr Names<Estimator, enumCount<Estimator>()> kEstimators{{{Estimator::Cell, "cell"},
                                            {Estimator::Radius, "radius"},
                                            {Estimator::Knn, "knn"},
                                            {Estimator::Progressive, "progressive"}}};
-constexpr Names<Kernel, 3> kKernels{{{Kernel::Box, "box"}, {Kernel::Cone, "cone"}, {Kernel::Epanechnikov, "epanechnikov"}}};
-constexpr Names<GridKind, 2> kGrids{{{GridKind::Bounded, "bounded"}, {GridKind::Hashed, "hashed"}}};
-constexpr Names<GlobalMode, 2> kGlobalModes{{{GlobalMode::Direct, "direct"}, {GlobalMode::FinalGather, "final-gather"}}};
-constexpr Names<View, 5> kViews{{{View::Final, "final"},
+constexpr Names<Kernel, enumCount<Kernel>()> kKernels{{{Kernel::Box, "box"}, {Kernel::Cone, "cone"}, {Kernel::Epanechnikov, "epanechnikov"}}};
+constexpr Names<GridKind, enumCount<GridKind>()> kGrids{{{GridKind::Bounded, "bounded"}, {GridKind::Hashed, "hashed"}}};
+constexpr Names<GlobalMode, enumCount<GlobalMode>()> kGlobalModes{{{GlobalMode::Direct, "direct"}, {GlobalMode::FinalGather, "final-gather"}}};
+constexpr Names<View, enumCount<View>()> kViews{{{View::Final, "final"},
                                  {View::Direct, "direct"},
                                  {View::Global, "global"},
                                  {View::Caustic, "caustic"},
                                  {View::Grid, "grid"}}};
-constexpr Names<Tonemap, 3> kTonemaps{{{Tonemap::Clamp, "clamp"}, {Tonemap::Reinhard, "reinhard"}, {Tonemap::Aces, "aces"}}};
+constexpr Names<Tonemap, enumCount<Tonemap>()> kTonemaps{{{Tonemap::Clamp, "clamp"}, {Tonemap::Reinhard, "reinhard"}, {Tonemap::Aces, "aces"}}};
+
+// Each table lists every value once, in order, so that names[v] is the name of value v.
+template <typename E, std::size_t N>
+constexpr bool complete(const Names<E, N>& names) {
+    for (std::size_t i = 0; i < N; ++i) {
+        if (static_cast<std::size_t>(names[i].first) != i || names[i].second == nullptr) {
+            return false;
+        }
+    }
+    return true;
+}
+static_assert(complete(kEstimators) && complete(kKernels) && complete(kGrids) && complete(kGlobalModes) &&
+              complete(kViews) && complete(kTonemaps), "every enumeration value needs its name, in order");
 
 template <typename E, std::size_t N>
 const char* nameOf(const Names<E, N>& names, E e) {
-    for (const auto& [value, name] : names) {
-        if (value == e) {
-            return name;
-        }
+    auto i = static_cast<std::size_t>(e);
+    if (i >= N) {
+        throw std::logic_error("unknown enumeration value " + std::to_string(i));
     }
-    return "?";
+    return names[i].second;
 }
 
 template <typename E, std::size_t N>

@@ -5,14 +5,38 @@
 #include <cstdint>
 #include <string>
 
+#include "shared/constants.h"
+
 namespace photon {
 
-enum class Estimator : std::uint32_t { Cell = 0, Radius = 1, Knn = 2, Progressive = 3 };
-enum class Kernel : std::uint32_t { Box = 0, Cone = 1, Epanechnikov = 2 };
-enum class GridKind : std::uint32_t { Bounded = 0, Hashed = 1 };
-enum class GlobalMode : std::uint32_t { Direct = 0, FinalGather = 1 };
-enum class View : std::uint32_t { Final = 0, Direct = 1, Global = 2, Caustic = 3, Grid = 4 };
-enum class Tonemap : std::uint32_t { Clamp = 0, Reinhard = 1, Aces = 2 };
+// Each option's values are the shared constants (shared/constants.h); enumCount<E>() is their
+// *_COUNT, and the name tables in settings.cpp are checked against it.
+enum class Estimator : std::uint32_t {
+    Cell = ESTIMATOR_CELL,
+    Radius = ESTIMATOR_RADIUS,
+    Knn = ESTIMATOR_KNN,
+    Progressive = ESTIMATOR_PROGRESSIVE
+};
+enum class Kernel : std::uint32_t { Box = KERNEL_BOX, Cone = KERNEL_CONE, Epanechnikov = KERNEL_EPANECHNIKOV };
+enum class GridKind : std::uint32_t { Bounded = GRID_BOUNDED, Hashed = GRID_HASHED };
+enum class GlobalMode : std::uint32_t { Direct = GLOBAL_DIRECT, FinalGather = GLOBAL_FINAL_GATHER };
+enum class View : std::uint32_t {
+    Final = VIEW_FINAL,
+    Direct = VIEW_DIRECT,
+    Global = VIEW_GLOBAL,
+    Caustic = VIEW_CAUSTIC,
+    Grid = VIEW_GRID
+};
+enum class Tonemap : std::uint32_t { Clamp = TONEMAP_CLAMP, Reinhard = TONEMAP_REINHARD, Aces = TONEMAP_ACES };
+
+template <typename E>
+constexpr std::uint32_t enumCount();
+template <> constexpr std::uint32_t enumCount<Estimator>() { return ESTIMATOR_COUNT; }
+template <> constexpr std::uint32_t enumCount<Kernel>() { return KERNEL_COUNT; }
+template <> constexpr std::uint32_t enumCount<GridKind>() { return GRID_KIND_COUNT; }
+template <> constexpr std::uint32_t enumCount<GlobalMode>() { return GLOBAL_MODE_COUNT; }
+template <> constexpr std::uint32_t enumCount<View>() { return VIEW_COUNT; }
+template <> constexpr std::uint32_t enumCount<Tonemap>() { return TONEMAP_COUNT; }
 
 struct RenderSettings {
     std::uint32_t width = 640;
@@ -38,6 +62,8 @@ struct RenderSettings {
     float photonCapacity = 4.0f;          // stored photons reserved per global path (GPU backends)
     std::uint32_t seed = 1;
     bool pixelCenter = false;             // one ray through each pixel centre, no lens
+    bool deterministic = false;           // GPUs order each cell's photons canonically: the same seed
+                                          // gives the same image bit for bit (the CPU always does)
     View view = View::Final;
     float exposure = 0.0f;                // stops
     Tonemap tonemap = Tonemap::Aces;

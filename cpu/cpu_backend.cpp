@@ -1,15 +1,18 @@
 #include "cpu_backend.h"
 
+#include <sys/resource.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
-#include <thread>
+#include <cstring>
+#include <fstream>
 #include <vector>
 
 #include "parallel.h"
-#include "shared/bindings.h"
 #include "shared/eye_trace.h"
 #include "shared/gather.h"
-#include "shared/grid.h"
+#include "shared/photon_map.h"
 #include "shared/photon_trace.h"
 #include "shared/progressive.h"
 
@@ -18,220 +21,188 @@ namespace {
 
 constexpr std::size_t kPhotonChunk = 2048;  // photon paths per chunk of the photon pass
 constexpr std::size_t kPixelChunk = 256;
+constexpr std::size_t kGridChunk = 16384;
 
 double millisecondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
+// Bytes this process may still map: physical memory, or less under an address-space limit
+// (ulimit -v), less what it has mapped already.
+std::uint64_t availableHostMemory() {
+    std::uint64_t page = std::uint64_t(sysconf(_SC_PAGESIZE));
+    std::uint64_t available = std::uint64_t(sysconf(_SC_PHYS_PAGES)) * page;
+    rlimit limit{};
+    if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY) {
+        std::uint64_t mapped = 0;
+        std::ifstream statm("/proc/self/statm");
+        statm >> mapped;
+        mapped *= page;
+        std::uint64_t room = limit.rlim_cur > mapped ? limit.rlim_cur - mapped : 0;
+        available = std::min(available, room);
+    }
+    return available;
+}
+
+std::uint64_t paddedBytes(std::uint64_t bytes) { return (bytes + 15) / 16 * 16; }
+
+// The backend's buffers: one 16-byte aligned array per binding, zeroed when sized.
+class HostBuffers {
+public:
+    void resize(std::uint32_t binding, std::uint64_t bytes) {
+        storage_[binding].assign(paddedBytes(bytes) / 16, glm::vec4(0.0f));
+        storage_[binding].shrink_to_fit();
+    }
+    void* data(std::uint32_t binding) { return storage_[binding].data(); }
+    std::uint64_t bytes(std::uint32_t binding) const { return storage_[binding].size() * sizeof(glm::vec4); }
+    std::uint64_t total() const {
+        std::uint64_t sum = 0;
+        for (const auto& s : storage_) {
+            sum += s.size() * sizeof(glm::vec4);
+        }
+        return sum;
+    }
+
+private:
+    std::vector<glm::vec4> storage_[BINDING_COUNT];
+};
+
 class CpuBackend final : public Backend {
 public:
     std::string name() const override { return "cpu"; }
 
-    std::string deviceName() const override {
-        return "CPU (" + std::to_string(workerThreads()) + " threads)";
+    std::string deviceName() const override { return "CPU (" + std::to_string(workerThreads()) + " threads)"; }
+
+    MemoryLimits memoryLimits() override {
+        MemoryLimits limits;
+        limits.device = "this machine";
+        limits.memory = "memory this process may use";
+        limits.total = availableHostMemory() + buffers_.total();
+        return limits;
     }
-
-    PhotonMaps readPhotonMaps() override {
-        PhotonMaps maps;
-        for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
-            const GridParams& g = bindings_.params.grids[m];
-            auto first = sorted_.begin() + g.photonOffset;
-            maps.photons[m].assign(first, first + traced_[m].size());
-            auto cells = cellStart_.begin() + g.cellOffset;
-            maps.cellStart[m].assign(cells, cells + g.cellCount + 1);
-        }
-        return maps;
-    }
-
-    std::vector<HitPoint> readHitPoints() override { return hitPoints_; }
-
-    Image readFrame() override { return toImage(frame_); }
 
 protected:
-    void uploadScene(const Scene& scene) override { scene_ = scene; }
+    void uploadScene(const Scene& scene, const BufferPlan&) override { scene_ = scene; }
 
-    void allocate(const PhotonBudget& budget, std::uint32_t width, std::uint32_t height) override {
-        std::size_t pixels = std::size_t(width) * height;
-        width_ = width;
-        height_ = height;
-        hitPoints_.assign(pixels, HitPoint{});
-        frame_.assign(pixels, glm::vec4(0.0f));
-        accumulation_.assign(pixels, glm::vec4(0.0f));
-        cellStart_.assign(budget.totalCellEntries(), 0u);
-        std::size_t chunks = (budget.totalPaths() + kPhotonChunk - 1) / kPhotonChunk;
-        for (auto& perChunk : chunkPhotons_) {
-            perChunk.assign(chunks, {});
+    // Buffers whose size is unchanged are kept (a grown photon map keeps the accumulated image);
+    // the others are freed before any is allocated, so that old and new need not fit together.
+    void allocate(const BufferPlan& plan, const PhotonBudget&, std::uint32_t width, std::uint32_t height) override {
+        std::vector<std::uint32_t> changed;
+        for (const BufferInfo& info : kBuffers) {
+            if (info.size != BUFFER_PER_SCENE && buffers_.bytes(info.binding) != paddedBytes(plan.bytes(info.binding))) {
+                changed.push_back(info.binding);
+                buffers_.resize(info.binding, 0);
+            }
         }
+        for (std::uint32_t binding : changed) {
+            buffers_.resize(binding, plan.bytes(binding));
+        }
+        pixels_ = std::size_t(width) * height;
     }
 
-    FrameStats runFrame(const FrameParams& params) override {
+    FrameResult runFrame(const FrameParams& params) override {
         bind(params);
-        FrameStats stats;
+        FrameResult result;
         auto t = std::chrono::steady_clock::now();
         tracePhotons();
-        stats.ms.tracePhotons = millisecondsSince(t);
+        result.ms.tracePhotons = millisecondsSince(t);
 
         t = std::chrono::steady_clock::now();
         buildGrid();
-        stats.ms.buildGrid = millisecondsSince(t);
+        result.ms.buildGrid = millisecondsSince(t);
 
         t = std::chrono::steady_clock::now();
-        tracePixels();
-        stats.ms.tracePixels = millisecondsSince(t);
+        forEachPixel([&](std::uint32_t p) { bindings_.hitPoints[p] = tracePixel(bindings_, p); });
+        result.ms.tracePixels = millisecondsSince(t);
 
         t = std::chrono::steady_clock::now();
-        gather();
-        stats.ms.gather = millisecondsSince(t);
+        forEachPixel([&](std::uint32_t p) { bindings_.frameRadiance[p] = glm::vec4(gatherPixel(bindings_, p), 1.0f); });
+        result.ms.gather = millisecondsSince(t);
 
         t = std::chrono::steady_clock::now();
-        accumulate();
-        stats.ms.accumulate = millisecondsSince(t);
+        std::uint32_t n = params.accumulated;
+        forEachPixel([&](std::uint32_t p) {
+            bindings_.accumulation[p] = accumulateMean(bindings_.accumulation[p], bindings_.frameRadiance[p], n);
+        });
+        result.ms.accumulate = millisecondsSince(t);
 
-        stats.emitted[MAP_GLOBAL] = params.globalPaths;
-        stats.emitted[MAP_CAUSTIC] = params.causticPaths;
-        for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
-            stats.stored[m] = static_cast<std::uint32_t>(traced_[m].size());
-            stats.capacity[m] = NONE;  // unbounded: the CPU appends to growing arrays
-        }
-        return stats;
+        std::copy(bindings_.counters, bindings_.counters + COUNTER_COUNT, result.counters);
+        return result;
     }
 
-    Image readAccumulation() override { return toImage(accumulation_); }
+    void readBuffer(std::uint32_t binding, std::uint64_t offset, std::uint64_t bytes, void* data) override {
+        const void* source = binding >= 1 && bufferInfo(binding).size == BUFFER_PER_SCENE
+                                 ? sceneArray(scene_, binding).data
+                                 : buffers_.data(binding);
+        std::memcpy(data, static_cast<const char*>(source) + offset, bytes);
+    }
 
 private:
     void bind(const FrameParams& params) {
-        Bindings& b = bindings_;
-        b.params = params;
-        bindSceneArrays(b, scene_);
-        b.photons = nullptr;  // the CPU appends per chunk instead
-        b.compactPhotons = nullptr;
-        b.photonKeys = nullptr;
-        b.cellCounts = nullptr;
-        b.cellStart = cellStart_.data();
-        b.counters = nullptr;
-        b.hitPoints = hitPoints_.data();
-        b.frameRadiance = frame_.data();
-        b.accumulation = accumulation_.data();
+        void* pointers[BINDING_COUNT] = {};
+        for (const BufferInfo& info : kBuffers) {
+            pointers[info.binding] = buffers_.data(info.binding);
+        }
+        pointBindings(bindings_, pointers);
+        bindSceneArrays(bindings_, scene_);
+        bindings_.params = params;
+        std::fill(bindings_.counters, bindings_.counters + COUNTER_COUNT, 0u);
     }
 
-    // Photon paths in fixed chunks, each appending to its own lists; the lists are then joined in
-    // chunk order, so the maps come out the same for any number of threads.
     void tracePhotons() {
         std::uint32_t paths = bindings_.params.globalPaths + bindings_.params.causticPaths;
-        std::size_t chunks = (paths + kPhotonChunk - 1) / kPhotonChunk;
-        for (auto& perChunk : chunkPhotons_) {
-            perChunk.resize(chunks);
-        }
-        const Bindings& b = bindings_;
-        parallelFor(chunks, 1, [&](std::size_t first, std::size_t last) {
-            for (std::size_t c = first; c < last; ++c) {
-                std::vector<Photon>& global = chunkPhotons_[MAP_GLOBAL][c];
-                std::vector<Photon>& caustic = chunkPhotons_[MAP_CAUSTIC][c];
-                global.clear();
-                caustic.clear();
-                std::uint32_t end = static_cast<std::uint32_t>(std::min<std::size_t>((c + 1) * kPhotonChunk, paths));
-                for (std::uint32_t i = static_cast<std::uint32_t>(c * kPhotonChunk); i < end; ++i) {
-                    PhotonPath path = startPhotonPath(b, i);
-                    while (photonPathAlive(path)) {
-                        Photon p;
-                        std::uint32_t store = photonBounce(b, path, p);
-                        if (store & STORE_GLOBAL) {
-                            global.push_back(p);
-                        }
-                        if (store & STORE_CAUSTIC) {
-                            caustic.push_back(p);
-                        }
-                    }
-                }
+        parallelFor(paths, kPhotonChunk, [&](std::size_t first, std::size_t last) {
+            for (std::size_t i = first; i < last; ++i) {
+                tracePhotonPath(bindings_, static_cast<std::uint32_t>(i));
             }
         });
-        for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
-            traced_[m].clear();
-            for (const std::vector<Photon>& list : chunkPhotons_[m]) {
-                traced_[m].insert(traced_[m].end(), list.begin(), list.end());
-            }
-        }
     }
 
-    // Counting sort of each map by cell key: count, exclusive prefix sum, stable scatter.
+    // The counting sort of photon_map.h, then each cell in canonical order: by photon id.
     void buildGrid() {
-        std::size_t total = traced_[MAP_GLOBAL].size() + traced_[MAP_CAUSTIC].size();
-        sorted_.resize(total);
-        std::uint32_t offset = 0;
+        const Bindings& b = bindings_;
         for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
-            GridParams& g = bindings_.params.grids[m];
-            g.photonOffset = offset;
-            g.photonCapacity = static_cast<std::uint32_t>(traced_[m].size());
-            const std::vector<Photon>& photons = traced_[m];
-            keys_.resize(photons.size());
-            parallelFor(photons.size(), 16384, [&](std::size_t first, std::size_t last) {
+            const GridParams& g = b.params.grids[m];
+            std::uint32_t stored = storedPhotons(b, m);
+            parallelFor(stored, kGridChunk, [&](std::size_t first, std::size_t last) {
                 for (std::size_t i = first; i < last; ++i) {
-                    keys_[i] = photonCellKey(photons[i].position, g);
+                    countPhotonCell(b, m, static_cast<std::uint32_t>(i));
                 }
             });
-            std::uint32_t* start = cellStart_.data() + g.cellOffset;
-            std::fill(start, start + g.cellCount + 1, 0u);
-            for (std::uint32_t key : keys_) {
-                start[key] += 1;
-            }
             std::uint32_t sum = 0;
-            for (std::uint32_t c = 0; c <= g.cellCount; ++c) {
-                std::uint32_t n = start[c];
-                start[c] = sum;
-                sum += n;
+            for (std::uint32_t c = g.cellOffset; c <= g.cellOffset + g.cellCount; ++c) {
+                b.cellStart[c] = sum;
+                sum += c < g.cellOffset + g.cellCount ? b.cellCounts[c] : 0u;
             }
-            cursor_.assign(start, start + g.cellCount);
-            for (std::size_t i = 0; i < photons.size(); ++i) {
-                sorted_[offset + cursor_[keys_[i]]++] = photons[i];
-            }
-            offset += static_cast<std::uint32_t>(photons.size());
+            parallelFor(stored, kGridChunk, [&](std::size_t first, std::size_t last) {
+                for (std::size_t i = first; i < last; ++i) {
+                    scatterPhoton(b, m, static_cast<std::uint32_t>(i));
+                }
+            });
+            Photon* photons = b.sortedPhotons + g.photonOffset;
+            const std::uint32_t* start = b.cellStart + g.cellOffset;
+            parallelFor(g.cellCount, kGridChunk, [&](std::size_t first, std::size_t last) {
+                for (std::size_t c = first; c < last; ++c) {
+                    std::sort(photons + start[c], photons + start[c + 1],
+                              [](const Photon& x, const Photon& y) { return x.id < y.id; });
+                }
+            });
         }
-        bindings_.sortedPhotons = sorted_.data();
     }
 
     template <typename PixelFn>
     void forEachPixel(const PixelFn& fn) {
-        parallelFor(std::size_t(width_) * height_, kPixelChunk, [&](std::size_t first, std::size_t last) {
+        parallelFor(pixels_, kPixelChunk, [&](std::size_t first, std::size_t last) {
             for (std::size_t p = first; p < last; ++p) {
                 fn(static_cast<std::uint32_t>(p));
             }
         });
     }
 
-    void tracePixels() {
-        const Bindings& b = bindings_;
-        forEachPixel([&](std::uint32_t p) { hitPoints_[p] = tracePixel(b, p); });
-    }
-
-    void gather() {
-        const Bindings& b = bindings_;
-        forEachPixel([&](std::uint32_t p) { frame_[p] = glm::vec4(gatherPixel(b, p), 1.0f); });
-    }
-
-    void accumulate() {
-        std::uint32_t n = bindings_.params.accumulated;
-        forEachPixel([&](std::uint32_t p) { accumulation_[p] = accumulateMean(accumulation_[p], frame_[p], n); });
-    }
-
-    Image toImage(const std::vector<glm::vec4>& pixels) const {
-        Image image(width_, height_);
-        image.pixels = pixels;
-        return image;
-    }
-
     Scene scene_;
+    HostBuffers buffers_;
     Bindings bindings_{};
-    std::uint32_t width_ = 0;
-    std::uint32_t height_ = 0;
-    std::vector<std::vector<Photon>> chunkPhotons_[MAP_COUNT];
-    std::vector<Photon> traced_[MAP_COUNT];  // each map's photons in path order
-    std::vector<std::uint32_t> keys_;
-    std::vector<std::uint32_t> cursor_;
-    std::vector<Photon> sorted_;             // both maps, each ordered by cell
-    std::vector<std::uint32_t> cellStart_;
-    std::vector<HitPoint> hitPoints_;
-    std::vector<glm::vec4> frame_;
-    std::vector<glm::vec4> accumulation_;
+    std::size_t pixels_ = 0;
 };
 
 }  // namespace

@@ -4,6 +4,8 @@
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
+#include <exception>
+#include <utility>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -33,6 +35,8 @@ public:
 
     unsigned threads() const { return static_cast<unsigned>(workers_.size() + 1); }
 
+    // Returns only once every worker is done with the body; an exception thrown by any chunk
+    // (std::bad_alloc, say) stops the handing out of chunks and is rethrown here, after that.
     void run(std::size_t count, std::size_t grain, const std::function<void(std::size_t, std::size_t)>& body) {
         std::lock_guard<std::mutex> one(runMutex_);  // one parallelFor at a time
         {
@@ -41,6 +45,7 @@ public:
             count_ = count;
             grain_ = std::max<std::size_t>(grain, 1);
             next_.store(0);
+            failure_ = nullptr;
             active_ = workers_.size();
             generation_ += 1;
         }
@@ -49,6 +54,9 @@ public:
         std::unique_lock<std::mutex> lock(mutex_);
         done_.wait(lock, [this] { return active_ == 0; });
         body_ = nullptr;
+        if (failure_) {
+            std::rethrow_exception(std::exchange(failure_, nullptr));
+        }
     }
 
 private:
@@ -58,7 +66,16 @@ private:
             if (begin >= count_) {
                 return;
             }
-            (*body_)(begin, std::min(begin + grain_, count_));
+            try {
+                (*body_)(begin, std::min(begin + grain_, count_));
+            } catch (...) {
+                std::lock_guard<std::mutex> lock(mutex_);
+                if (!failure_) {
+                    failure_ = std::current_exception();
+                }
+                next_.store(count_);
+                return;
+            }
         }
     }
 
@@ -93,6 +110,7 @@ private:
     std::atomic<std::size_t> next_{0};
     std::size_t active_ = 0;
     std::uint64_t generation_ = 0;
+    std::exception_ptr failure_;
     bool stopping_ = false;
 };
 

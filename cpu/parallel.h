@@ -9,7 +9,8 @@
 namespace photon {
 
 // Calls body(begin, end) for consecutive chunks of [0, count) of at most `grain` items, on all
-// hardware threads including the caller's. Returns when every chunk is done.
+// hardware threads including the caller's. Returns when every chunk is done; if a chunk throws,
+// no further chunks start and the exception reaches the caller once every thread has stopped.
 void parallelFor(std::size_t count, std::size_t grain, const std::function<void(std::size_t, std::size_t)>& body);
 
 unsigned workerThreads();

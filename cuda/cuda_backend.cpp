@@ -5,23 +5,15 @@
 #include <vector>
 
 #include "cell_scan.h"
-#include "cell_sort.h"
 #include "cuda_check.h"
 #include "device_memory.h"
+#include "photon_sort.h"
 
 namespace photon {
 namespace {
 
 // Stage boundaries timed with CUDA events.
 enum Mark { kStart, kPhotonsTraced, kGridBuilt, kPixelsTraced, kGathered, kAccumulated, kMarkCount };
-
-template <typename T>
-void upload(DeviceArray<T>& device, const std::vector<T>& host, const char* what) {
-    device.resize(std::max<std::size_t>(host.size(), 1), what);
-    if (!host.empty()) {
-        CUDA_CHECK(cudaMemcpy(device.data(), host.data(), host.size() * sizeof(T), cudaMemcpyHostToDevice), what);
-    }
-}
 
 class CudaBackend final : public Backend {
 public:
@@ -32,13 +24,18 @@ public:
         }
         int index = 0;
         if (!options.device.empty()) {
+            std::size_t used = 0;
             try {
-                index = std::stoi(options.device);
+                index = std::stoi(options.device, &used);
             } catch (const std::exception&) {
+                used = 0;
+            }
+            if (used != options.device.size()) {
                 throw InputError("--device '" + options.device + "': the CUDA backend takes a device index");
             }
             if (index < 0 || index >= count) {
-                throw InputError("--device " + options.device + ": there are " + std::to_string(count) + " CUDA devices");
+                throw InputError("--device " + options.device + ": there are " + std::to_string(count) +
+                                 " CUDA devices (0 to " + std::to_string(count - 1) + ")");
             }
         }
         CUDA_CHECK(cudaSetDevice(index), "setup");
@@ -49,9 +46,11 @@ public:
         }
         config_.gridBlocks = static_cast<std::uint32_t>(properties_.multiProcessorCount) * 8u;
         parity_ = options.parity;
+        counters_.resize(COUNTER_COUNT, "setup");
     }
 
     ~CudaBackend() override {
+        cudaStreamSynchronize(stream_);
         for (cudaEvent_t e : events_) {
             cudaEventDestroy(e);
         }
@@ -61,109 +60,83 @@ public:
     std::string name() const override { return "cuda"; }
     std::string deviceName() const override { return std::string(properties_.name) + (parity_ ? " (parity build)" : ""); }
 
-    void setLaunchConfig(const LaunchConfig& config) {
-        if (config.compactPhotons && std::any_of(scene().materials.begin(), scene().materials.end(),
-                                                 [](const Material& m) { return m.type == MATERIAL_GLOSSY; })) {
-            throw InputError("compact photons carry no direction: the scene's glossy materials need it");
-        }
-        config_ = config;
-    }
+    void setLaunchConfig(const LaunchConfig& config) { config_ = config; }
 
-    PhotonMaps readPhotonMaps() override {
-        PhotonMaps maps;
-        for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
-            const GridParams& g = bindings_.params.grids[m];
-            std::uint32_t n = std::min(counters_[COUNTER_STORED_GLOBAL + m], g.photonCapacity);
-            maps.photons[m].resize(n);
-            maps.cellStart[m].resize(std::size_t(g.cellCount) + 1);
-            if (n > 0) {
-                CUDA_CHECK(cudaMemcpy(maps.photons[m].data(), sortedPhotons_.data() + g.photonOffset, n * sizeof(Photon),
-                                      cudaMemcpyDeviceToHost),
-                           "readback");
-            }
-            CUDA_CHECK(cudaMemcpy(maps.cellStart[m].data(), cellStart_.data() + g.cellOffset,
-                                  maps.cellStart[m].size() * sizeof(std::uint32_t), cudaMemcpyDeviceToHost),
-                       "readback");
-        }
-        return maps;
-    }
-
-    std::vector<HitPoint> readHitPoints() override {
-        std::vector<HitPoint> hits(hitPoints_.size());
-        CUDA_CHECK(cudaMemcpy(hits.data(), hitPoints_.data(), hitPoints_.bytes(), cudaMemcpyDeviceToHost), "readback");
-        return hits;
-    }
-
-    Image readFrame() override { return readPixels(frameRadiance_); }
-
-protected:
-    void uploadScene(const Scene& scene) override {
-        upload(spheres_, scene.spheres, "upload scene");
-        upload(planes_, scene.planes, "upload scene");
-        upload(quads_, scene.quads, "upload scene");
-        upload(triangles_, scene.triangles, "upload scene");
-        upload(materials_, scene.materials, "upload scene");
-        upload(lights_, scene.lights, "upload scene");
-        upload(targets_, scene.targets, "upload scene");
-    }
-
-    void allocate(const PhotonBudget& budget, std::uint32_t width, std::uint32_t height) override {
-        std::size_t pixels = std::size_t(width) * height;
-        std::size_t photons = std::max<std::size_t>(budget.totalCapacity(), 1);
-        std::size_t cells = budget.totalCellEntries();
-        std::size_t need = photons * (2 * sizeof(Photon) + sizeof(CompactPhoton) + sizeof(std::uint32_t)) +
-                           2 * cells * sizeof(std::uint32_t) +
-                           pixels * (sizeof(HitPoint) + 2 * sizeof(glm::vec4));
-        // Free the old buffers first, then check what the device has: too much fails here, before work.
-        for (DeviceArray<Photon>* a : {&photons_, &sortedPhotons_}) {
-            a->resize(0, "allocate");
-        }
-        compactPhotons_.resize(0, "allocate");
-        photonKeys_.resize(0, "allocate");
+    MemoryLimits memoryLimits() override {
         std::size_t freeBytes = 0;
         std::size_t totalBytes = 0;
-        CUDA_CHECK(cudaMemGetInfo(&freeBytes, &totalBytes), "allocate");
-        if (need > freeBytes) {
-            throw InputError("CUDA: " + std::to_string(width) + "x" + std::to_string(height) + " with " +
-                             std::to_string(budget.totalPaths()) + " photons per frame needs " +
-                             std::to_string(need >> 20) + " MiB of device memory, " + properties_.name + " has " +
-                             std::to_string(freeBytes >> 20) + " MiB free: lower --photons or the resolution");
+        CUDA_CHECK(cudaMemGetInfo(&freeBytes, &totalBytes), "memory check");
+        std::uint64_t held = 0;
+        for (const DeviceArray<unsigned char>& b : buffers_) {
+            held += b.bytes();
         }
-        photons_.resize(photons, "allocate photons");
-        sortedPhotons_.resize(photons, "allocate photons");
-        compactPhotons_.resize(photons, "allocate photons");
-        photonKeys_.resize(photons, "allocate photons");
-        cellCounts_.resize(cells, "allocate grid");
-        cellStart_.resize(cells, "allocate grid");
-        CUDA_CHECK(cudaMemset(cellCounts_.data(), 0, cellCounts_.bytes()), "allocate grid");
-        CUDA_CHECK(cudaMemset(cellStart_.data(), 0, cellStart_.bytes()), "allocate grid");
-        scan_.reserve(std::max(budget.cells[MAP_GLOBAL], budget.cells[MAP_CAUSTIC]) + 1);
-        counters_.resize(COUNTER_COUNT, "allocate");
-        deviceCounters_.resize(COUNTER_COUNT, "allocate");
-        hitPoints_.resize(pixels, "allocate image");
-        frameRadiance_.resize(pixels, "allocate image");
-        accumulation_.resize(pixels, "allocate image");
-        hostPixels_.resize(pixels, "allocate image");
-        CUDA_CHECK(cudaMemset(counters_.data(), 0, counters_.bytes()), "allocate");
-        width_ = width;
-        height_ = height;
+        MemoryLimits limits;
+        limits.device = properties_.name;
+        limits.memory = "free device memory";
+        limits.total = freeBytes + held;
+        return limits;
     }
 
-    FrameStats runFrame(const FrameParams& params) override {
+protected:
+    // The scan's storage, and the deterministic build's sort of the larger map.
+    void adjustPlan(BufferPlan& plan, const PhotonBudget& budget) override {
+        plan.scratchBytes = 64u << 20;
+        if (settings().deterministic) {
+            plan.scratchBytes += PhotonSort::bytesFor(std::max(budget.capacity[MAP_GLOBAL], budget.capacity[MAP_CAUSTIC]));
+        }
+    }
+
+    void uploadScene(const Scene& scene, const BufferPlan& plan) override {
+        for (const BufferInfo& info : kBuffers) {
+            if (info.size != BUFFER_PER_SCENE) {
+                continue;
+            }
+            DeviceArray<unsigned char>& buffer = buffers_[info.binding];
+            buffer.resize(plan.bytes(info.binding), "upload scene");
+            HostArray array = sceneArray(scene, info.binding);
+            CUDA_CHECK(cudaMemset(buffer.data(), 0, buffer.bytes()), "upload scene");
+            if (array.count > 0) {
+                CUDA_CHECK(cudaMemcpy(buffer.data(), array.data, array.count * info.elementBytes, cudaMemcpyHostToDevice),
+                           "upload scene");
+            }
+        }
+    }
+
+    void allocate(const BufferPlan& plan, const PhotonBudget& budget, std::uint32_t width, std::uint32_t height) override {
+        // Buffers whose size is unchanged are kept (a grown photon map keeps the accumulated
+        // image); the others are freed before any is allocated, so that old and new need not fit
+        // together.
+        std::vector<std::uint32_t> changed;
+        for (const BufferInfo& info : kBuffers) {
+            if (info.size != BUFFER_PER_SCENE && buffers_[info.binding].bytes() != plan.bytes(info.binding)) {
+                changed.push_back(info.binding);
+                buffers_[info.binding].resize(0, "allocate");
+            }
+        }
+        for (std::uint32_t binding : changed) {
+            DeviceArray<unsigned char>& buffer = buffers_[binding];
+            buffer.resize(plan.bytes(binding), bufferInfo(binding).name);
+            CUDA_CHECK(cudaMemset(buffer.data(), 0, buffer.bytes()), bufferInfo(binding).name);
+        }
+        scan_.reserve(std::max(budget.cells[MAP_GLOBAL], budget.cells[MAP_CAUSTIC]) + 1);
+        width_ = width;
+        height_ = height;
+        hostPixels_.resize(std::size_t(width) * height, "allocate image");
+    }
+
+    FrameResult runFrame(const FrameParams& params) override {
         bind(params);
         const Bindings& b = bindings_;
-        const StageKernels& kernels = config_.compactPhotons ? kCompactKernels : *kernels_;
+        const StageKernels& kernels = *kernels_;
         CUDA_CHECK(cudaEventRecord(events_[kStart], stream_), "tracePhotons");
-        CUDA_CHECK(cudaMemsetAsync(deviceCounters_.data(), 0, deviceCounters_.bytes(), stream_), "tracePhotons");
+        CUDA_CHECK(cudaMemsetAsync(b.counters, 0, COUNTER_COUNT * sizeof(std::uint32_t), stream_), "tracePhotons");
         kernels.tracePhotons(b, params.globalPaths + params.causticPaths, config_, stream_);
         CUDA_CHECK(cudaEventRecord(events_[kPhotonsTraced], stream_), "tracePhotons");
 
-        if (config_.radixSortGrid) {
-            // CUB's sort takes its item count on the host: this variant waits for the photon pass.
-            CUDA_CHECK(cudaMemcpyAsync(counters_.data(), deviceCounters_.data(), counters_.bytes(),
-                                       cudaMemcpyDeviceToHost, stream_),
-                       "buildGrid (sort)");
-            CUDA_CHECK(cudaStreamSynchronize(stream_), "buildGrid (sort)");
+        bool deterministic = (params.flags & FLAG_DETERMINISTIC) != 0u;
+        if (deterministic) {
+            // CUB's sort takes its item count on the host: this build waits for the photon pass.
+            readCounters();
         }
         for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
             const GridParams& g = params.grids[m];
@@ -171,18 +144,14 @@ protected:
                 continue;
             }
             kernels.countCells(b, m, config_, stream_);
-            scan_.exclusiveSum(cellCounts_.data() + g.cellOffset, cellStart_.data() + g.cellOffset, g.cellCount + 1, stream_);
-            if (config_.radixSortGrid) {
-                std::uint32_t n = std::min(counters_[COUNTER_STORED_GLOBAL + m], g.photonCapacity);
-                int bits = 1;
-                while ((1ull << bits) < g.cellCount) {
-                    bits += 1;
-                }
-                sort_.reserve(g.photonCapacity);
-                sort_.sort(photonKeys_.data() + g.photonOffset, photons_.data() + g.photonOffset,
-                           sortedPhotons_.data() + g.photonOffset, n, bits, stream_);
-                CUDA_CHECK(cudaMemsetAsync(cellCounts_.data() + g.cellOffset, 0, (g.cellCount + 1) * sizeof(std::uint32_t),
-                                           stream_),
+            scan_.exclusiveSum(b.cellCounts + g.cellOffset, b.cellStart + g.cellOffset, g.cellCount + 1, stream_);
+            if (deterministic) {
+                std::uint32_t stored = std::min(counters_[COUNTER_STORED_GLOBAL + m], g.photonCapacity);
+                sort_.reserve(std::max(stored, 1u));
+                kernels.sortKeys(b, m, stored, sort_.keys(), sort_.indices(), config_, stream_);
+                const std::uint32_t* order = sort_.sort(stored, int(g.keyBits + params.photonIdBits), stream_);
+                kernels.placeSorted(b, m, stored, order, config_, stream_);
+                CUDA_CHECK(cudaMemsetAsync(b.cellCounts + g.cellOffset, 0, (g.cellCount + 1) * sizeof(std::uint32_t), stream_),
                            "buildGrid (sort)");
             } else {
                 kernels.scatterPhotons(b, m, config_, stream_);
@@ -196,67 +165,49 @@ protected:
         CUDA_CHECK(cudaEventRecord(events_[kGathered], stream_), "gather");
         kernels.accumulate(b, config_, stream_);
         CUDA_CHECK(cudaEventRecord(events_[kAccumulated], stream_), "accumulate");
-        CUDA_CHECK(cudaMemcpyAsync(counters_.data(), deviceCounters_.data(), counters_.bytes(), cudaMemcpyDeviceToHost,
-                                   stream_),
-                   "accumulate");
-        CUDA_CHECK(cudaEventSynchronize(events_[kAccumulated]), "frame");
-        CUDA_CHECK(cudaStreamSynchronize(stream_), "frame");
+        readCounters();
 
-        FrameStats stats;
-        double* stage[] = {&stats.ms.tracePhotons, &stats.ms.buildGrid, &stats.ms.tracePixels, &stats.ms.gather,
-                           &stats.ms.accumulate};
+        FrameResult result;
+        double* stage[] = {&result.ms.tracePhotons, &result.ms.buildGrid, &result.ms.tracePixels, &result.ms.gather,
+                           &result.ms.accumulate};
         for (int i = 0; i < kMarkCount - 1; ++i) {
             float ms = 0.0f;
             CUDA_CHECK(cudaEventElapsedTime(&ms, events_[i], events_[i + 1]), "timing");
             *stage[i] = ms;
         }
-        stats.emitted[MAP_GLOBAL] = params.globalPaths;
-        stats.emitted[MAP_CAUSTIC] = params.causticPaths;
-        for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
-            stats.stored[m] = counters_[COUNTER_STORED_GLOBAL + m];
-            stats.capacity[m] = params.grids[m].photonCapacity;
-        }
-        return stats;
+        std::copy(counters_.data(), counters_.data() + COUNTER_COUNT, result.counters);
+        return result;
     }
 
-    Image readAccumulation() override { return readPixels(accumulation_); }
+    // One copy into pinned memory, then into the caller's (or, to measure the difference,
+    // straight into the caller's pageable memory).
+    void readBuffer(std::uint32_t binding, std::uint64_t offset, std::uint64_t bytes, void* data) override {
+        const unsigned char* source = buffers_[binding].data() + offset;
+        bool pixels = binding != BINDING_PARAMS && bufferInfo(binding).size == BUFFER_PER_PIXEL;
+        if (!pixels || !config_.pinnedReadback || bytes > hostPixels_.bytes()) {
+            CUDA_CHECK(cudaMemcpy(data, source, bytes, cudaMemcpyDeviceToHost), "readback");
+            return;
+        }
+        CUDA_CHECK(cudaMemcpyAsync(hostPixels_.data(), source, bytes, cudaMemcpyDeviceToHost, stream_), "readback");
+        CUDA_CHECK(cudaStreamSynchronize(stream_), "readback");
+        std::copy_n(reinterpret_cast<const unsigned char*>(hostPixels_.data()), bytes, static_cast<unsigned char*>(data));
+    }
 
 private:
     void bind(const FrameParams& params) {
-        Bindings& b = bindings_;
-        b.params = params;
-        b.spheres = spheres_.data();
-        b.planes = planes_.data();
-        b.quads = quads_.data();
-        b.triangles = triangles_.data();
-        b.materials = materials_.data();
-        b.lights = lights_.data();
-        b.targets = targets_.data();
-        b.photons = photons_.data();
-        b.photonKeys = photonKeys_.data();
-        b.sortedPhotons = sortedPhotons_.data();
-        b.compactPhotons = compactPhotons_.data();
-        b.cellCounts = cellCounts_.data();
-        b.cellStart = cellStart_.data();
-        b.counters = deviceCounters_.data();
-        b.hitPoints = hitPoints_.data();
-        b.frameRadiance = frameRadiance_.data();
-        b.accumulation = accumulation_.data();
+        void* pointers[BINDING_COUNT] = {};
+        for (const BufferInfo& info : kBuffers) {
+            pointers[info.binding] = buffers_[info.binding].data();
+        }
+        pointBindings(bindings_, pointers);
+        bindings_.params = params;
     }
 
-    // One copy into pinned memory, then into the image (or, to measure the difference, straight
-    // into the image's pageable memory).
-    Image readPixels(const DeviceArray<glm::vec4>& pixels) {
-        Image image(width_, height_);
-        if (!config_.pinnedReadback) {
-            CUDA_CHECK(cudaMemcpy(image.pixels.data(), pixels.data(), pixels.bytes(), cudaMemcpyDeviceToHost), "readback");
-            return image;
-        }
-        CUDA_CHECK(cudaMemcpyAsync(hostPixels_.data(), pixels.data(), pixels.bytes(), cudaMemcpyDeviceToHost, stream_),
-                   "readback");
-        CUDA_CHECK(cudaStreamSynchronize(stream_), "readback");
-        std::copy(hostPixels_.data(), hostPixels_.data() + hostPixels_.size(), image.pixels.begin());
-        return image;
+    // The counters of the frame so far, into host memory.
+    void readCounters() {
+        CUDA_CHECK(cudaMemcpyAsync(counters_.data(), bindings_.counters, counters_.bytes(), cudaMemcpyDeviceToHost, stream_),
+                   "counters");
+        CUDA_CHECK(cudaStreamSynchronize(stream_), "frame");
     }
 
     const StageKernels* kernels_;  // fast or parity
@@ -269,30 +220,11 @@ private:
     std::uint32_t width_ = 0;
     std::uint32_t height_ = 0;
 
-    // Scene.
-    DeviceArray<Sphere> spheres_;
-    DeviceArray<Plane> planes_;
-    DeviceArray<Quad> quads_;
-    DeviceArray<Triangle> triangles_;
-    DeviceArray<Material> materials_;
-    DeviceArray<Light> lights_;
-    DeviceArray<CausticTarget> targets_;
-    // Photon maps: both maps side by side, see PhotonBudget.
-    DeviceArray<Photon> photons_;        // in the order they were stored
-    DeviceArray<std::uint32_t> photonKeys_;
-    DeviceArray<Photon> sortedPhotons_;  // in cell order
-    DeviceArray<CompactPhoton> compactPhotons_;  // the same, 16 bytes each (LaunchConfig::compactPhotons)
-    DeviceArray<std::uint32_t> cellCounts_;
-    DeviceArray<std::uint32_t> cellStart_;
+    DeviceArray<unsigned char> buffers_[BINDING_COUNT];  // by binding (shared/bindings.h)
     CellScan scan_;
-    CellSort sort_;  // LaunchConfig::radixSortGrid only
-    DeviceArray<std::uint32_t> deviceCounters_;
-    PinnedArray<std::uint32_t> counters_;  // last frame's counters
-    // Image.
-    DeviceArray<HitPoint> hitPoints_;
-    DeviceArray<glm::vec4> frameRadiance_;
-    DeviceArray<glm::vec4> accumulation_;
-    PinnedArray<glm::vec4> hostPixels_;
+    PhotonSort sort_;                                    // the deterministic build only
+    PinnedArray<std::uint32_t> counters_;                // the last frame's counters
+    PinnedArray<glm::vec4> hostPixels_;                  // image readbacks
 };
 
 }  // namespace

@@ -1,5 +1,5 @@
-// The CUDA backend: every stage on the GPU, one kernel per stage from shared/, photons and the
-// image kept on the device across frames, one copy back into pinned memory at the end.
+// The CUDA backend: every stage on the GPU, one kernel per stage from shared/, every buffer of
+// shared/bindings.h kept on the device across frames, images copied back through pinned memory.
 #pragma once
 
 #include <memory>

@@ -4,6 +4,7 @@
 #include "../shared/eye_trace.h"
 #include "../shared/gather.h"
 #include "../shared/grid.h"
+#include "../shared/photon_map.h"
 #include "../shared/photon_trace.h"
 #include "../shared/progressive.h"
 #include "../shared/tonemap.h"
@@ -11,9 +12,13 @@
 namespace photon {
 __global__ void sharedCheck(Bindings bindings) {
     uint i = blockIdx.x * blockDim.x + threadIdx.x;
+    tracePhotonPath(bindings, i);
+    countPhotonCell(bindings, MAP_GLOBAL, i);
+    scatterPhoton(bindings, MAP_GLOBAL, i);
+    uvec2 key = photonSortKey(bindings, MAP_CAUSTIC, i);
     PhotonPath path = startPhotonPath(bindings, i);
     Photon p;
-    uint store = photonBounce(bindings, path, p);
+    uint store = photonBounce(bindings, path, p) + key.x + photonSortKeyBits(bindings, MAP_GLOBAL);
     bindings.hitPoints[i] = tracePixel(bindings, i);
     bindings.frameRadiance[i] = vec4(gatherPixel(bindings, i), float(store));
     bindings.accumulation[i] = accumulateMean(bindings.accumulation[i], bindings.frameRadiance[i], bindings.params.accumulated);

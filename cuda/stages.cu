@@ -3,90 +3,57 @@
 // compilation defines (kFastKernels or kParityKernels, see stages.h).
 #include "stages.h"
 
-#include <cooperative_groups.h>
+#include <string>
 
+#include "core/error.h"
 #include "cuda_check.h"
 #include "shared/eye_trace.h"
 #include "shared/gather.h"
-#include "shared/grid.h"
+#include "shared/photon_map.h"
 #include "shared/photon_trace.h"
 #include "shared/progressive.h"
 
 namespace photon {
 namespace PHOTON_KERNEL_NAMESPACE {
 
-namespace cg = cooperative_groups;
-
 // The gather is bound by memory latency: more resident warps hide more of it. With blocks of up to
 // 256 threads, 4 per SM leaves 64 registers a thread; final gather needs more and gets them.
 constexpr int kGatherThreads = 256;
 constexpr int gatherMinBlocks(uint globalMode) { return globalMode == GLOBAL_DIRECT ? 4 : 1; }
 
-// Appends to a map. The threads of a warp that store at the same time reserve their slots with
-// one atomic: a million threads on one counter would otherwise queue up at L2.
-__device__ inline void appendPhoton(const Bindings& b, uint map, const Photon& p) {
-    const GridParams& grid = b.params.grids[map];
-    cg::coalesced_group active = cg::coalesced_threads();
-    uint base = 0u;
-    if (active.thread_rank() == 0) {
-        base = atomicAdd(&b.counters[COUNTER_STORED_GLOBAL + map], active.size());
-    }
-    uint slot = active.shfl(base, 0) + active.thread_rank();
-    if (slot < grid.photonCapacity) {
-        b.photons[grid.photonOffset + slot] = p;
-    }
-}
-
 __global__ void tracePhotonsKernel(Bindings b, uint paths) {
     uint i = blockIdx.x * blockDim.x + threadIdx.x;
-    if (i >= paths) {
-        return;
+    if (i < paths) {
+        tracePhotonPath(b, i);
     }
-    PhotonPath path = startPhotonPath(b, i);
-    while (photonPathAlive(path)) {
-        Photon p;
-        uint store = photonBounce(b, path, p);
-        if (store & STORE_GLOBAL) {
-            appendPhoton(b, MAP_GLOBAL, p);
-        }
-        if (store & STORE_CAUSTIC) {
-            appendPhoton(b, MAP_CAUSTIC, p);
-        }
-    }
-}
-
-// Photons stored in `map` this frame, capped at its capacity.
-__device__ inline uint storedPhotons(const Bindings& b, uint map) {
-    return min(b.counters[COUNTER_STORED_GLOBAL + map], b.params.grids[map].photonCapacity);
 }
 
 __global__ void countCellsKernel(Bindings b, uint map) {
-    const GridParams& grid = b.params.grids[map];
     uint n = storedPhotons(b, map);
     for (uint i = blockIdx.x * blockDim.x + threadIdx.x; i < n; i += gridDim.x * blockDim.x) {
-        uint key = photonCellKey(b.photons[grid.photonOffset + i].position, grid);
-        b.photonKeys[grid.photonOffset + i] = key;
-        atomicAdd(&b.cellCounts[grid.cellOffset + key], 1u);
+        countPhotonCell(b, map, i);
     }
 }
 
 __global__ void scatterPhotonsKernel(Bindings b, uint map) {
-    const GridParams& grid = b.params.grids[map];
     uint n = storedPhotons(b, map);
     for (uint i = blockIdx.x * blockDim.x + threadIdx.x; i < n; i += gridDim.x * blockDim.x) {
-        uint key = b.photonKeys[grid.photonOffset + i];
-        // Counting down the cell's count hands out its slots and leaves the count at zero.
-        uint slot = atomicSub(&b.cellCounts[grid.cellOffset + key], 1u) - 1u;
-        uint place = grid.photonOffset + b.cellStart[grid.cellOffset + key] + slot;
-#ifdef PH_COMPACT_PHOTONS
-        const Photon& p = b.photons[grid.photonOffset + i];
-        CompactPhoton c;
-        c.position = p.position;
-        c.power = encodeRgbe(p.power);
-        b.compactPhotons[place] = c;
-#else
-        b.sortedPhotons[place] = b.photons[grid.photonOffset + i];
-#endif
+        scatterPhoton(b, map, i);
+    }
+}
+
+__global__ void sortKeysKernel(Bindings b, uint map, uint n, std::uint64_t* keys, uint* indices) {
+    for (uint i = blockIdx.x * blockDim.x + threadIdx.x; i < n; i += gridDim.x * blockDim.x) {
+        uvec2 key = photonSortKey(b, map, i);
+        keys[i] = (std::uint64_t(key.y) << 32) | key.x;
+        indices[i] = i;
+    }
+}
+
+__global__ void placeSortedKernel(Bindings b, uint map, uint n, const uint* order) {
+    uint offset = b.params.grids[map].photonOffset;
+    for (uint i = blockIdx.x * blockDim.x + threadIdx.x; i < n; i += gridDim.x * blockDim.x) {
+        b.sortedPhotons[offset + i] = b.photons[offset + order[i]];
     }
 }
 
@@ -142,6 +109,18 @@ void scatterPhotons(const Bindings& b, std::uint32_t map, const LaunchConfig& c,
     CUDA_CHECK_LAUNCH("buildGrid (scatter)");
 }
 
+void sortKeys(const Bindings& b, std::uint32_t map, std::uint32_t count, std::uint64_t* keys, std::uint32_t* indices,
+              const LaunchConfig& c, cudaStream_t s) {
+    sortKeysKernel<<<c.gridBlocks, 256, 0, s>>>(b, map, count, keys, indices);
+    CUDA_CHECK_LAUNCH("buildGrid (sort keys)");
+}
+
+void placeSorted(const Bindings& b, std::uint32_t map, std::uint32_t count, const std::uint32_t* order,
+                 const LaunchConfig& c, cudaStream_t s) {
+    placeSortedKernel<<<c.gridBlocks, 256, 0, s>>>(b, map, count, order);
+    CUDA_CHECK_LAUNCH("buildGrid (place sorted)");
+}
+
 void tracePixels(const Bindings& b, const LaunchConfig& c, cudaStream_t s) {
     tracePixelsKernel<<<pixelGrid(b, c), dim3(c.pixelBlockX, c.pixelBlockY), 0, s>>>(b);
     CUDA_CHECK_LAUNCH("tracePixels");
@@ -151,24 +130,21 @@ template <uint Estimator>
 void gatherWith(const Bindings& b, const LaunchConfig& c, cudaStream_t s) {
     dim3 grid = pixelGrid(b, c);
     dim3 block(c.pixelBlockX, c.pixelBlockY);
-    if (b.params.globalMode == GLOBAL_FINAL_GATHER) {
-        gatherKernel<Estimator, GLOBAL_FINAL_GATHER><<<grid, block, 0, s>>>(b);
-    } else {
-        gatherKernel<Estimator, GLOBAL_DIRECT><<<grid, block, 0, s>>>(b);
+    switch (b.params.globalMode) {
+        case GLOBAL_DIRECT: gatherKernel<Estimator, GLOBAL_DIRECT><<<grid, block, 0, s>>>(b); break;
+        case GLOBAL_FINAL_GATHER: gatherKernel<Estimator, GLOBAL_FINAL_GATHER><<<grid, block, 0, s>>>(b); break;
+        default: throw std::logic_error("CUDA gather: unknown global mode " + std::to_string(b.params.globalMode));
     }
 }
 
 void gather(const Bindings& b, const LaunchConfig& c, cudaStream_t s) {
+    static_assert(ESTIMATOR_COUNT == 4, "a new estimator needs its gather kernel here");
     switch (b.params.estimator) {
-        case ESTIMATOR_CELL:
-            gatherWith<ESTIMATOR_CELL>(b, c, s);
-            break;
-        case ESTIMATOR_KNN:
-            gatherWith<ESTIMATOR_KNN>(b, c, s);
-            break;
-        default:  // radius and progressive are the same estimate
-            gatherWith<ESTIMATOR_RADIUS>(b, c, s);
-            break;
+        case ESTIMATOR_CELL: gatherWith<ESTIMATOR_CELL>(b, c, s); break;
+        case ESTIMATOR_RADIUS:
+        case ESTIMATOR_PROGRESSIVE: gatherWith<ESTIMATOR_RADIUS>(b, c, s); break;  // the same estimate
+        case ESTIMATOR_KNN: gatherWith<ESTIMATOR_KNN>(b, c, s); break;
+        default: throw std::logic_error("CUDA gather: unknown estimator " + std::to_string(b.params.estimator));
     }
     CUDA_CHECK_LAUNCH("gather");
 }
@@ -182,7 +158,8 @@ void accumulate(const Bindings& b, const LaunchConfig& c, cudaStream_t s) {
 
 const StageKernels PHOTON_KERNEL_TABLE = {
     PHOTON_KERNEL_NAMESPACE::tracePhotons, PHOTON_KERNEL_NAMESPACE::countCells,
-    PHOTON_KERNEL_NAMESPACE::scatterPhotons, PHOTON_KERNEL_NAMESPACE::tracePixels,
+    PHOTON_KERNEL_NAMESPACE::scatterPhotons, PHOTON_KERNEL_NAMESPACE::sortKeys,
+    PHOTON_KERNEL_NAMESPACE::placeSorted, PHOTON_KERNEL_NAMESPACE::tracePixels,
     PHOTON_KERNEL_NAMESPACE::gather, PHOTON_KERNEL_NAMESPACE::accumulate,
 };
 

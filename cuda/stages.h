@@ -1,7 +1,7 @@
-// The CUDA kernels of one frame, one per stage, behind a table of launch functions. stages.cu is
-// compiled three times: with FMA contraction (the fast build), without (--fmad=false, the parity
-// build, whose photon maps and hit points match the CPU backend bit for bit), and with 16-byte
-// photons (PH_COMPACT_PHOTONS, an experiment measured in docs/performance.md).
+// The CUDA kernels of one frame, one per stage (buildGrid in steps), behind a table of launch
+// functions. stages.cu is compiled twice: with FMA contraction (the fast build) and without
+// (--fmad=false, the parity build, whose photon maps and hit points match the CPU backend bit for
+// bit).
 #pragma once
 
 #include <cuda_runtime.h>
@@ -18,18 +18,22 @@ struct LaunchConfig {
     std::uint32_t pixelBlockX = 16;   // pixel tile of the eye pass and the gather
     std::uint32_t pixelBlockY = 8;
     std::uint32_t gridBlocks = 1056;  // blocks of the grid-stride loops over stored photons
-    bool compactPhotons = false;      // gather from 16-byte photons (no side test, Lambertian only)
     bool pinnedReadback = true;       // images come back through pinned memory (else pageable)
-    bool radixSortGrid = false;       // buildGrid orders photons by CUB radix sort, not the scatter
 };
 
 struct StageKernels {
-    // Emits and traces paths [0, paths), appending photons to both maps.
+    // tracePhotons: paths [0, paths), appending photons to both maps.
     void (*tracePhotons)(const Bindings& b, std::uint32_t paths, const LaunchConfig& c, cudaStream_t s);
-    // Cell key of each stored photon of `map`, and photons per cell (cellCounts, cleared before).
+    // buildGrid, count: cell key of each stored photon of `map`, and photons per cell.
     void (*countCells)(const Bindings& b, std::uint32_t map, const LaunchConfig& c, cudaStream_t s);
-    // Photons of `map` into cell order, from cellStart; leaves cellCounts at zero for the next frame.
+    // buildGrid, scatter: photons of `map` into cell order, from cellStart; leaves cellCounts at zero.
     void (*scatterPhotons)(const Bindings& b, std::uint32_t map, const LaunchConfig& c, cudaStream_t s);
+    // buildGrid, deterministic: the (cell, id) sort key and index of each of `count` stored photons
+    // of `map`; and, once the keys are sorted, the photons in that order.
+    void (*sortKeys)(const Bindings& b, std::uint32_t map, std::uint32_t count, std::uint64_t* keys,
+                     std::uint32_t* indices, const LaunchConfig& c, cudaStream_t s);
+    void (*placeSorted)(const Bindings& b, std::uint32_t map, std::uint32_t count, const std::uint32_t* order,
+                        const LaunchConfig& c, cudaStream_t s);
     void (*tracePixels)(const Bindings& b, const LaunchConfig& c, cudaStream_t s);
     void (*gather)(const Bindings& b, const LaunchConfig& c, cudaStream_t s);
     void (*accumulate)(const Bindings& b, const LaunchConfig& c, cudaStream_t s);
@@ -37,6 +41,5 @@ struct StageKernels {
 
 extern const StageKernels kFastKernels;
 extern const StageKernels kParityKernels;
-extern const StageKernels kCompactKernels;
 
 }  // namespace photon

@@ -42,11 +42,6 @@ bool pixelOfInvocation(out uint pixel) {
     return p.x < params.width && p.y < params.height;
 }
 
-// Photons a map holds this frame: those tracePhotons counted, up to the map's capacity.
-uint storedPhotons(uint map) {
-    uint counter = map == MAP_GLOBAL ? COUNTER_STORED_GLOBAL : COUNTER_STORED_CAUSTIC;
-    return min(counters[counter], params.grids[map].photonCapacity);
-}
 #endif
 
 #endif

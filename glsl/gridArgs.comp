@@ -3,6 +3,7 @@
 // each map, so that they run over the photons tracePhotons stored rather than the capacity.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/bindings.h"
+#include "shared/photon_map.h"
 #include "glsl/dispatch.h"
 
 layout(local_size_x = 1) in;

@@ -2,7 +2,7 @@
 // Stage buildGrid, step 1 (per map): the cell key of every stored photon, and the photons per cell.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/bindings.h"
-#include "shared/grid.h"
+#include "shared/photon_map.h"
 #include "glsl/dispatch.h"
 
 layout(local_size_x = GROUP_SIZE) in;
@@ -10,11 +10,7 @@ layout(push_constant) uniform Push { uint map; } push;
 
 void main() {
     uint i = invocationIndex();
-    if (i >= storedPhotons(push.map)) {
-        return;
+    if (i < storedPhotons(push.map)) {
+        countPhotonCell(push.map, i);
     }
-    GridParams grid = params.grids[push.map];
-    uint key = photonCellKey(photons[grid.photonOffset + i].position, grid);
-    photonKeys[grid.photonOffset + i] = key;
-    atomicAdd(cellCounts[grid.cellOffset + key], 1u);
 }

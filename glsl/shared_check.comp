@@ -6,10 +6,12 @@
 #include "../shared/math.h"
 #include "../shared/sampling.h"
 #include "../shared/intersect.h"
+#include "../shared/material.h"
 #include "../shared/bsdf.h"
 #include "../shared/lights.h"
 #include "../shared/photon_trace.h"
 #include "../shared/grid.h"
+#include "../shared/photon_map.h"
 #include "../shared/estimate.h"
 #include "../shared/eye_trace.h"
 #include "../shared/gather.h"
@@ -20,9 +22,13 @@ layout(local_size_x = 64) in;
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
+    tracePhotonPath(i);
+    countPhotonCell(MAP_GLOBAL, i);
+    scatterPhoton(MAP_GLOBAL, i);
+    uvec2 key = photonSortKey(MAP_CAUSTIC, i);
     PhotonPath path = startPhotonPath(i);
     Photon p;
-    uint store = photonBounce(path, p);
+    uint store = photonBounce(path, p) + key.x + photonSortKeyBits(MAP_GLOBAL);
     hitPoints[i] = tracePixel(i);
     frameRadiance[i] = vec4(gatherPixel(i), float(store));
     accumulation[i] = accumulateMean(accumulation[i], frameRadiance[i], params.accumulated);

@@ -10,6 +10,7 @@
 #define PH_HIT_POINTS_READONLY
 #include "shared/bindings.h"
 #include "shared/eye_trace.h"
+#include "shared/photon_map.h"
 #include "glsl/dispatch.h"
 #include "glsl/viewer.h"
 

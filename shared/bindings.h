@@ -1,87 +1,125 @@
-// Binding numbers and the buffers behind BUF(name). In GLSL every buffer is a global declared
-// here; in C++ and CUDA the same names are members of Bindings, which the backends fill with
-// their own pointers (host memory, device memory) and pass to every function that reads buffers.
+// Every buffer the stages read or write, declared once. PH_BUFFERS is a list that the C and GLSL
+// preprocessors both expand: into GLSL buffer declarations, into the C++/CUDA Bindings struct that
+// the backends fill with their own pointers (host memory, device memory), into the table the hosts
+// size, upload and check buffers from (kBuffers), and into the layout test's strides. Adding a
+// buffer is one row here plus its struct in layout.h.
+//
+// A row is X(NAME, binding, element type, name, access, size):
+//   NAME     the binding constant is BINDING_<NAME>
+//   binding  its number; rows are numbered 1, 2, 3, ... (binding 0 is the FrameParams uniform)
+//   access   RO: read-only everywhere; RW: written by some stage; MAPS and HITS: written by some
+//            stage, read-only in shaders that define PH_PHOTON_MAPS_READONLY or PH_HIT_POINTS_READONLY
+//            (drivers can then serve those loads from read-only caches)
+//   size     how many elements the host allocates (BUFFER_PER_*, sized in core/buffers.cpp)
 #ifndef PHOTON_SHARED_BINDINGS_H
 #define PHOTON_SHARED_BINDINGS_H
 
 #include "layout.h"
 
+#define PH_BUFFERS(X)                                                          \
+    X(SPHERES, 1u, Sphere, spheres, RO, SCENE)                                 \
+    X(PLANES, 2u, Plane, planes, RO, SCENE)                                    \
+    X(QUADS, 3u, Quad, quads, RO, SCENE)                                       \
+    X(TRIANGLES, 4u, Triangle, triangles, RO, SCENE)                           \
+    X(MATERIALS, 5u, Material, materials, RO, SCENE)                           \
+    X(LIGHTS, 6u, Light, lights, RO, SCENE)                                    \
+    X(TARGETS, 7u, CausticTarget, targets, RO, SCENE)                          \
+    X(PHOTONS, 8u, Photon, photons, RW, PHOTON)                               \
+    X(PHOTON_KEYS, 9u, uint, photonKeys, RW, PHOTON)                          \
+    X(SORTED_PHOTONS, 10u, Photon, sortedPhotons, MAPS, PHOTON)               \
+    X(CELL_COUNTS, 11u, uint, cellCounts, RW, CELL)                           \
+    X(CELL_START, 12u, uint, cellStart, MAPS, CELL)                           \
+    X(COUNTERS, 13u, uint, counters, RW, COUNTER)                             \
+    X(HIT_POINTS, 14u, HitPoint, hitPoints, HITS, PIXEL)                      \
+    X(FRAME, 15u, vec4, frameRadiance, RW, PIXEL)                             \
+    X(ACCUMULATION, 16u, vec4, accumulation, RW, PIXEL)
+
 PH_NAMESPACE_BEGIN
 
-PH_CONST uint BINDING_PARAMS = 0u;          // FrameParams (uniform)
-PH_CONST uint BINDING_SPHERES = 1u;
-PH_CONST uint BINDING_PLANES = 2u;
-PH_CONST uint BINDING_QUADS = 3u;
-PH_CONST uint BINDING_TRIANGLES = 4u;
-PH_CONST uint BINDING_MATERIALS = 5u;
-PH_CONST uint BINDING_LIGHTS = 6u;
-PH_CONST uint BINDING_TARGETS = 7u;          // CausticTarget
-PH_CONST uint BINDING_PHOTONS = 8u;          // photons in the order they were traced, both maps
-PH_CONST uint BINDING_PHOTON_KEYS = 9u;      // grid cell of each traced photon
-PH_CONST uint BINDING_SORTED_PHOTONS = 10u;  // photons ordered by cell: the photon maps
-PH_CONST uint BINDING_CELL_COUNTS = 11u;     // photons per cell, then the scatter cursors
-PH_CONST uint BINDING_CELL_START = 12u;      // exclusive prefix sum of the counts, one extra entry
-PH_CONST uint BINDING_COUNTERS = 13u;        // COUNTER_* slots
-PH_CONST uint BINDING_HIT_POINTS = 14u;
-PH_CONST uint BINDING_FRAME = 15u;           // this frame's radiance per pixel (vec4)
-PH_CONST uint BINDING_ACCUMULATION = 16u;    // running mean over frames (vec4)
-PH_CONST uint BINDING_COUNT = 17u;
+// How many elements a buffer holds (the list's last column, BufferInfo::size).
+PH_CONST uint BUFFER_PER_SCENE = 0u;    // the scene's array (one zeroed element when it is empty)
+PH_CONST uint BUFFER_PER_PHOTON = 1u;   // PhotonBudget::totalCapacity(): both maps side by side
+PH_CONST uint BUFFER_PER_CELL = 2u;     // PhotonBudget::totalCellEntries(): both grids' cells
+PH_CONST uint BUFFER_PER_PIXEL = 3u;    // width × height
+PH_CONST uint BUFFER_PER_COUNTER = 4u;  // COUNTER_COUNT
+PH_CONST uint BUFFER_SIZE_CLASS_COUNT = 5u;
+
+PH_CONST uint BINDING_PARAMS = 0u;  // FrameParams (uniform)
+#define PH_BINDING_CONSTANT(NAME, b, T, name, access, sizeClass) PH_CONST uint BINDING_##NAME = b;
+PH_BUFFERS(PH_BINDING_CONSTANT)
+#define PH_COUNT_ROW(NAME, b, T, name, access, sizeClass) 1u +
+PH_CONST uint BINDING_COUNT = 1u + PH_BUFFERS(PH_COUNT_ROW) 0u;
 
 PH_NAMESPACE_END
 
 #ifndef __cplusplus
-// A shader that only reads the photon maps or the hit points says so by defining
-// PH_PHOTON_MAPS_READONLY or PH_HIT_POINTS_READONLY before including this file: drivers can then
-// serve those loads from their read-only caches.
 #ifdef PH_PHOTON_MAPS_READONLY
-#define PH_MAPS_ACCESS readonly
+#define PH_ACCESS_MAPS readonly
 #else
-#define PH_MAPS_ACCESS
+#define PH_ACCESS_MAPS
 #endif
 #ifdef PH_HIT_POINTS_READONLY
-#define PH_HITS_ACCESS readonly
+#define PH_ACCESS_HITS readonly
 #else
-#define PH_HITS_ACCESS
+#define PH_ACCESS_HITS
 #endif
+#define PH_ACCESS_RO readonly
+#define PH_ACCESS_RW
 layout(std140, set = 0, binding = BINDING_PARAMS) uniform ParamsBlock { FrameParams params; };
-layout(std430, set = 0, binding = BINDING_SPHERES) readonly restrict buffer SphereBuffer { Sphere spheres[]; };
-layout(std430, set = 0, binding = BINDING_PLANES) readonly restrict buffer PlaneBuffer { Plane planes[]; };
-layout(std430, set = 0, binding = BINDING_QUADS) readonly restrict buffer QuadBuffer { Quad quads[]; };
-layout(std430, set = 0, binding = BINDING_TRIANGLES) readonly restrict buffer TriangleBuffer { Triangle triangles[]; };
-layout(std430, set = 0, binding = BINDING_MATERIALS) readonly restrict buffer MaterialBuffer { Material materials[]; };
-layout(std430, set = 0, binding = BINDING_LIGHTS) readonly restrict buffer LightBuffer { Light lights[]; };
-layout(std430, set = 0, binding = BINDING_TARGETS) readonly restrict buffer TargetBuffer { CausticTarget targets[]; };
-layout(std430, set = 0, binding = BINDING_PHOTONS) restrict buffer PhotonBuffer { Photon photons[]; };
-layout(std430, set = 0, binding = BINDING_PHOTON_KEYS) restrict buffer PhotonKeyBuffer { uint photonKeys[]; };
-layout(std430, set = 0, binding = BINDING_SORTED_PHOTONS) PH_MAPS_ACCESS restrict buffer SortedPhotonBuffer { Photon sortedPhotons[]; };
-layout(std430, set = 0, binding = BINDING_CELL_COUNTS) restrict buffer CellCountBuffer { uint cellCounts[]; };
-layout(std430, set = 0, binding = BINDING_CELL_START) PH_MAPS_ACCESS restrict buffer CellStartBuffer { uint cellStart[]; };
-layout(std430, set = 0, binding = BINDING_COUNTERS) restrict buffer CounterBuffer { uint counters[]; };
-layout(std430, set = 0, binding = BINDING_HIT_POINTS) PH_HITS_ACCESS restrict buffer HitPointBuffer { HitPoint hitPoints[]; };
-layout(std430, set = 0, binding = BINDING_FRAME) restrict buffer FrameBuffer { vec4 frameRadiance[]; };
-layout(std430, set = 0, binding = BINDING_ACCUMULATION) restrict buffer AccumulationBuffer { vec4 accumulation[]; };
+#define PH_DECLARE_BUFFER(NAME, b, T, name, access, sizeClass) \
+    layout(std430, set = 0, binding = b) PH_ACCESS_##access restrict buffer name##Buffer { T name[]; };
+PH_BUFFERS(PH_DECLARE_BUFFER)
 #else
+#include <cstddef>
 namespace photon {
+
+#define PH_POINTER_RO(T) const T*
+#define PH_POINTER_RW(T) T*
+#define PH_POINTER_MAPS(T) T*
+#define PH_POINTER_HITS(T) T*
+#define PH_BINDING_MEMBER(NAME, b, T, name, access, sizeClass) PH_POINTER_##access(T) name;
+
 struct Bindings {
     FrameParams params;
-    const Sphere* spheres;
-    const Plane* planes;
-    const Quad* quads;
-    const Triangle* triangles;
-    const Material* materials;
-    const Light* lights;
-    const CausticTarget* targets;
-    Photon* photons;
-    uint* photonKeys;
-    Photon* sortedPhotons;
-    CompactPhoton* compactPhotons;  // the compact-photon experiment only (CUDA); no GLSL binding
-    uint* cellCounts;
-    uint* cellStart;
-    uint* counters;
-    HitPoint* hitPoints;
-    glm::vec4* frameRadiance;
-    glm::vec4* accumulation;
+    PH_BUFFERS(PH_BINDING_MEMBER)
 };
+
+// One row of the list, for the hosts.
+struct BufferInfo {
+    uint binding;
+    const char* name;         // as in GLSL and Bindings
+    std::size_t elementBytes;
+    uint size;                // BUFFER_PER_*
+    bool readOnly;            // RO: never written by a stage
+};
+
+#define PH_IS_READ_ONLY_RO true
+#define PH_IS_READ_ONLY_RW false
+#define PH_IS_READ_ONLY_MAPS false
+#define PH_IS_READ_ONLY_HITS false
+#define PH_BUFFER_INFO(NAME, b, T, name, access, sizeClass) {b, #name, sizeof(T), BUFFER_PER_##sizeClass, PH_IS_READ_ONLY_##access},
+// kBuffers[i] is binding i + 1.
+inline constexpr BufferInfo kBuffers[] = {PH_BUFFERS(PH_BUFFER_INFO)};
+inline constexpr std::size_t kBufferCount = sizeof(kBuffers) / sizeof(kBuffers[0]);
+static_assert(kBufferCount + 1 == BINDING_COUNT, "one binding per row, and the parameters");
+
+constexpr bool buffersNumberedInOrder() {
+    for (std::size_t i = 0; i < kBufferCount; ++i) {
+        if (kBuffers[i].binding != i + 1) {
+            return false;
+        }
+    }
+    return true;
+}
+static_assert(buffersNumberedInOrder(), "PH_BUFFERS rows must be bindings 1, 2, 3, ... in order");
+
+inline const BufferInfo& bufferInfo(uint binding) { return kBuffers[binding - 1]; }
+
+// Points every member of `b` at pointers[binding] (pointers[0], the parameters, is not used).
+#define PH_POINT_MEMBER(NAME, b, T, name, access, sizeClass) \
+    bindings.name = static_cast<PH_POINTER_##access(T)>(pointers[b]);
+inline void pointBindings(Bindings& bindings, void* const* pointers) { PH_BUFFERS(PH_POINT_MEMBER) }
+
 }  // namespace photon
 #endif
 

@@ -4,46 +4,22 @@
 #ifndef PHOTON_SHARED_BSDF_H
 #define PHOTON_SHARED_BSDF_H
 
-#include "layout.h"
+#include "material.h"
 #include "rng.h"
 #include "sampling.h"
 
 PH_NAMESPACE_BEGIN
 
 PH_CONST uint LOBE_NONE = 0u;      // absorbed
-PH_CONST uint LOBE_DIFFUSE = 1u;   // diffuse or glossy: a photon is stored there, an eye path ends
-PH_CONST uint LOBE_SPECULAR = 2u;  // mirror or glass: a delta distribution
+PH_CONST uint LOBE_DIFFUSE = 1u;   // Lambertian
+PH_CONST uint LOBE_GLOSSY = 2u;    // the GGX microfacet lobe
+PH_CONST uint LOBE_SPECULAR = 3u;  // mirror or glass: a delta distribution
 
 struct BsdfSample {
     vec3 direction;
     vec3 weight;  // f·|cosθ| / pdf, so that throughput *= weight
     uint lobe;
 };
-
-PH_FN bool isSpecular(PH_IN(Material) m) { return m.type == MATERIAL_MIRROR || m.type == MATERIAL_GLASS; }
-
-// Surfaces where photons are stored and eye paths may end.
-PH_FN bool isDiffuseLike(PH_IN(Material) m) {
-    return m.type == MATERIAL_DIFFUSE || m.type == MATERIAL_GLOSSY || m.type == MATERIAL_REFLECTIVE;
-}
-
-// Probability that a reflective material's mirror coat, not its Lambertian base, takes a ray.
-PH_FN float mirrorCoatProbability(PH_IN(Material) m) {
-    float d = maxComponent(m.albedo);
-    float s = maxComponent(m.specular);
-    return (d + s) > 0.0f ? s / (d + s) : 0.0f;
-}
-
-// The Lambertian base of a reflective material, which is what density estimates and shadow rays
-// see: its mirror coat is a delta lobe that only traced rays can follow.
-PH_FN Material diffusePart(PH_IN(Material) m) {
-    Material d = m;
-    if (m.type == MATERIAL_REFLECTIVE) {
-        d.type = MATERIAL_DIFFUSE;
-        d.specular = vec3(0.0f);
-    }
-    return d;
-}
 
 // Fresnel reflectance of a smooth dielectric for unpolarised light. cosI > 0 on the incident side,
 // eta = ηt/ηi. Returns 1 under total internal reflection.
@@ -152,7 +128,7 @@ PH_FN BsdfSample sampleBsdf(PH_IN(Material) m, vec3 wo, vec3 n, PH_INOUT(Rng) rn
                 float g = ggxG1(cosO, alpha) * ggxG1(cosI, alpha);
                 bs.direction = wi;
                 bs.weight = m.specular * (g * dot(wo, h) / (cosO * dot(h, nf) * pSpecular));
-                bs.lobe = LOBE_DIFFUSE;
+                bs.lobe = LOBE_GLOSSY;
             }
         } else {
             bs.direction = localToWorld(sampleCosineHemisphere(u1, u2), nf);

@@ -1,5 +1,6 @@
 // Constants and enumerations shared by every backend. Enumerations are plain uint constants so that
-// they mean the same in buffers, in GLSL and in C++.
+// they mean the same in buffers, in GLSL and in C++; each has a *_COUNT, and the host's enums
+// (core/settings.h) are defined from these values and checked against the counts.
 #ifndef PHOTON_SHARED_CONSTANTS_H
 #define PHOTON_SHARED_CONSTANTS_H
 
@@ -14,15 +15,15 @@ PH_CONST float INV_TWO_PI = 0.15915494309189533577f;
 PH_CONST float INV_FOUR_PI = 0.07957747154594766788f;
 PH_CONST float FLOAT_MAX = 3.402823466e+38f;
 PH_CONST uint NONE = 0xffffffffu;
-PH_CONST uint INCOMING_UNKNOWN = 0xffffffffu;  // Photon::incoming of a compact photon: no side test
 
-// Material types (Material::type).
-PH_CONST uint MATERIAL_DIFFUSE = 0u;  // Lambertian: albedo/π
-PH_CONST uint MATERIAL_MIRROR = 1u;   // perfect specular reflection, coloured by `specular`
-PH_CONST uint MATERIAL_GLASS = 2u;    // smooth dielectric with exact Fresnel; transmission tinted by `specular`
-PH_CONST uint MATERIAL_GLOSSY = 3u;   // Lambertian base + GGX microfacet lobe (Walter et al. 2007)
-PH_CONST uint MATERIAL_EMITTER = 4u;  // the visible surface of an area light: emits, absorbs everything
+// Material types (Material::type). What each one does is answered in one place: materialFlags().
+PH_CONST uint MATERIAL_DIFFUSE = 0u;     // Lambertian: albedo/π
+PH_CONST uint MATERIAL_MIRROR = 1u;      // perfect specular reflection, coloured by `specular`
+PH_CONST uint MATERIAL_GLASS = 2u;       // smooth dielectric with exact Fresnel; transmission tinted by `specular`
+PH_CONST uint MATERIAL_GLOSSY = 3u;      // Lambertian base + GGX microfacet lobe (Walter et al. 2007)
+PH_CONST uint MATERIAL_EMITTER = 4u;     // the visible surface of an area light: emits, absorbs everything
 PH_CONST uint MATERIAL_REFLECTIVE = 5u;  // Lambertian base under a perfect mirror coat (Whitted)
+PH_CONST uint MATERIAL_TYPE_COUNT = 6u;
 
 // Light types (Light::type).
 PH_CONST uint LIGHT_POINT = 0u;
@@ -39,32 +40,44 @@ PH_CONST uint PRIM_SPHERE = 0u;
 PH_CONST uint PRIM_PLANE = 1u;
 PH_CONST uint PRIM_QUAD = 2u;
 PH_CONST uint PRIM_TRIANGLE = 3u;
+PH_CONST uint PRIM_KIND_COUNT = 4u;
 
 // Radiance estimators (FrameParams::estimator).
-PH_CONST uint ESTIMATOR_CELL = 0u;         // the seed's: photons of the containing grid cell
+PH_CONST uint ESTIMATOR_CELL = 0u;         // Wu's estimate: the photons of the containing grid cell
 PH_CONST uint ESTIMATOR_RADIUS = 1u;       // fixed radius, filtered by a kernel
 PH_CONST uint ESTIMATOR_KNN = 2u;          // k nearest photons within a maximum radius (Jensen)
 PH_CONST uint ESTIMATOR_PROGRESSIVE = 3u;  // fixed radius per frame, shrinking (Knaus & Zwicker 2011)
+PH_CONST uint ESTIMATOR_COUNT = 4u;
 
 // Density-estimation kernels (FrameParams::kernel).
 PH_CONST uint KERNEL_BOX = 0u;
 PH_CONST uint KERNEL_CONE = 1u;          // Jensen's cone filter, k = 1
 PH_CONST uint KERNEL_EPANECHNIKOV = 2u;
+PH_CONST uint KERNEL_COUNT = 3u;
 
 // Photon map grids (GridParams::kind).
-PH_CONST uint GRID_BOUNDED = 0u;  // the seed's k³ cells over the scene's bounding cube, clamped
+PH_CONST uint GRID_BOUNDED = 0u;  // k³ cells over the scene's bounding cube, clamped (Wu's grid)
 PH_CONST uint GRID_HASHED = 1u;   // unbounded cells hashed into a table (Teschner et al. 2003)
+PH_CONST uint GRID_KIND_COUNT = 2u;
 
 // How the global map reaches the image (FrameParams::globalMode).
-PH_CONST uint GLOBAL_DIRECT = 0u;       // estimate indirect light at the eye hit itself
-PH_CONST uint GLOBAL_FINAL_GATHER = 1u; // one bounce of gather rays, global map at their hits
+PH_CONST uint GLOBAL_DIRECT = 0u;        // estimate indirect light at the eye hit itself
+PH_CONST uint GLOBAL_FINAL_GATHER = 1u;  // one bounce of gather rays, global map at their hits
+PH_CONST uint GLOBAL_MODE_COUNT = 2u;
 
 // What the gather stage writes (FrameParams::view).
 PH_CONST uint VIEW_FINAL = 0u;
-PH_CONST uint VIEW_DIRECT = 1u;    // emission + direct light only
-PH_CONST uint VIEW_GLOBAL = 2u;    // global-map estimate only
-PH_CONST uint VIEW_CAUSTIC = 3u;   // caustic-map estimate only
-PH_CONST uint VIEW_GRID = 4u;      // photons in the hit point's cell, as a heat map
+PH_CONST uint VIEW_DIRECT = 1u;   // emission + direct light only
+PH_CONST uint VIEW_GLOBAL = 2u;   // global-map estimate only
+PH_CONST uint VIEW_CAUSTIC = 3u;  // caustic-map estimate only
+PH_CONST uint VIEW_GRID = 4u;     // photons in the hit point's cell, as a heat map
+PH_CONST uint VIEW_COUNT = 5u;
+
+// Tone curves (display only, shared/tonemap.h).
+PH_CONST uint TONEMAP_CLAMP = 0u;
+PH_CONST uint TONEMAP_REINHARD = 1u;
+PH_CONST uint TONEMAP_ACES = 2u;  // Narkowicz's fit of the ACES filmic curve
+PH_CONST uint TONEMAP_COUNT = 3u;
 
 // Photon maps.
 PH_CONST uint MAP_GLOBAL = 0u;
@@ -74,7 +87,7 @@ PH_CONST uint MAP_COUNT = 2u;
 // Slots of the counters buffer.
 PH_CONST uint COUNTER_STORED_GLOBAL = 0u;   // photons appended to the global map this frame
 PH_CONST uint COUNTER_STORED_CAUSTIC = 1u;  // photons appended to the caustic map this frame
-PH_CONST uint COUNTER_COUNT = 4u;
+PH_CONST uint COUNTER_COUNT = 2u;
 
 // photonBounce() result bits.
 PH_CONST uint STORE_GLOBAL = 1u;
@@ -87,13 +100,19 @@ PH_CONST uint PATH_CAUSTIC_PASS = 4u;   // emitted towards a specular object for
 PH_CONST uint PATH_FROM_TARGET = 8u;    // its first surface was a caustic target (see photon_trace.h)
 
 // FrameParams::flags bits.
-PH_CONST uint FLAG_PIXEL_CENTER = 1u;     // one ray through each pixel centre: no jitter, no lens
-PH_CONST uint FLAG_SPLIT_CAUSTICS = 2u;   // caustic paths come from the caustic pass only
+PH_CONST uint FLAG_PIXEL_CENTER = 1u;    // one ray through each pixel centre: no jitter, no lens
+PH_CONST uint FLAG_SPLIT_CAUSTICS = 2u;  // caustic paths come from the caustic pass only
+PH_CONST uint FLAG_DETERMINISTIC = 4u;   // the photon maps in canonical order (photon_map.h)
 
 // Independent random streams, so that no two stages draw the same numbers.
 PH_CONST uint STREAM_PHOTON = 0x1b873593u;
 PH_CONST uint STREAM_CAMERA = 0xcc9e2d51u;
 PH_CONST uint STREAM_GATHER = 0x85ebca6bu;
+
+// A stored photon's identity: its path and the bounce at which it was stored, (path << 6) | bounce.
+// Unique within a map, and the same on every backend, so it gives each cell a canonical order.
+PH_CONST uint PHOTON_BOUNCE_BITS = 6u;      // bounces 0..63: max_photon_depth is at most 64
+PH_CONST uint PHOTON_PATHS_MAX = 67108864u;  // 2^26 photon paths a frame, so that ids fit 32 bits
 
 // Fixed capacities.
 PH_CONST uint KNN_MAX = 64u;              // largest k of the k-nearest estimator

@@ -4,7 +4,7 @@
 // a ball (Jensen 2001, §7.2): within r of x and within DISC_THICKNESS·r of the tangent plane, which
 // keeps photons of a neighbouring wall out of a corner's estimate, still holds curved surfaces whose
 // radius exceeds 2r, and lets a query visit only the cells the disc crosses. Ways to pick "near":
-//   cell:        the photons of x's own grid cell, over the cell's cross-section h² (the seed).
+//   cell:        the photons of x's own grid cell, over the cell's cross-section h² (Wu's estimate).
 //   radius:      all photons within r, weighted by a kernel K normalised over the disc.
 //   knn:         the k nearest within a maximum radius; r is the distance to the k-th (Jensen).
 //   progressive: radius, with r shrinking from frame to frame (see progressive.h).
@@ -51,17 +51,14 @@ PH_FN float kernelNorm(uint kernel) {
 // surfaces return 1 and get albedo/π once, outside the loop (estimateScale); they only need the
 // side, so they skip normalising ωp.
 PH_FN vec3 photonReflectance(PH_IN(Shading) s, uint incoming) {
-#ifdef PH_COMPACT_PHOTONS
-    return vec3(1.0f);  // compact photons carry no direction (Lambertian scenes only)
-#endif
-    if (s.material.type == MATERIAL_DIFFUSE) {
+    if (surfaceIs(s.material, SURFACE_LAMBERTIAN)) {
         return dot(octDecodeUnnormalized(incoming), s.normal) > 0.0f ? vec3(1.0f) : vec3(0.0f);
     }
     return evalBsdf(s.material, s.wo, octDecode(incoming), s.normal);
 }
 
 PH_FN vec3 estimateScale(PH_IN(Shading) s) {
-    return s.material.type == MATERIAL_DIFFUSE ? s.material.albedo * INV_PI : vec3(1.0f);
+    return surfaceIs(s.material, SURFACE_LAMBERTIAN) ? s.material.albedo * INV_PI : vec3(1.0f);
 }
 
 PH_CONST float DISC_THICKNESS = 0.25f;  // half-thickness of the estimation disc, in radii
@@ -72,21 +69,7 @@ PH_FN vec3 discExtent(vec3 n, float r, float t) {
     return r * sqrt(max(vec3(1.0f) - n2, vec3(0.0f))) + t * abs(n);
 }
 
-// Photon i of the sorted maps. The compact-photon experiment (PH_COMPACT_PHOTONS, CUDA only) reads
-// 16-byte records instead.
-PH_FN Photon loadMapPhoton(BUF_PARAM uint i) {
-#ifdef PH_COMPACT_PHOTONS
-    CompactPhoton c = BUF(compactPhotons)[i];
-    Photon p;
-    p.position = c.position;
-    p.incoming = INCOMING_UNKNOWN;
-    p.power = decodeRgbe(c.power);
-    p.flags = 0u;
-    return p;
-#else
-    return BUF(sortedPhotons)[i];
-#endif
-}
+PH_FN Photon loadMapPhoton(BUF_PARAM uint i) { return BUF(sortedPhotons)[i]; }
 
 // Walks the cells that a box (x ± extent) overlaps. Hashed grids have cells of edge at least r, so
 // the box of a query of radius r spans at most 3 per axis, and their keys are distinct (grid.h).
@@ -143,10 +126,6 @@ PH_FN uint subsampleStride(uint count, uint budget) {
 
 PH_FN uint subsampleStart(uint begin, uint stride, float u) { return begin + min(uint(u * float(stride)), stride - 1u); }
 
-// One flat loop over (cell, photon) pairs, in which each iteration either tests a photon or moves
-// to the next cell: on SIMD hardware the threads of a warp then drift through their cells
-// independently instead of waiting for each other at every cell boundary (the "if-if" loop of
-// Aila & Laine, "Understanding the Efficiency of Ray Traversal on GPUs", HPG 2009).
 // Adds one photon's share to a radius estimate at s if it lies in the disc. (Adding in place, not
 // returning zero for the many photons outside: x + 0 is not free under IEEE rules.)
 PH_FN void addRadiusContribution(PH_INOUT(vec3) sum, PH_IN(Shading) s, PH_IN(Photon) p, float r2, float invR2,
@@ -158,6 +137,10 @@ PH_FN void addRadiusContribution(PH_INOUT(vec3) sum, PH_IN(Shading) s, PH_IN(Pho
     }
 }
 
+// The radius estimate as one flat loop over (cell, photon) pairs, in which each iteration either
+// tests a photon or moves to the next cell: on SIMD hardware the threads of a warp then drift
+// through their cells independently instead of waiting for each other at every cell boundary (the
+// "if-if" loop of Aila & Laine, "Understanding the Efficiency of Ray Traversal on GPUs", HPG 2009).
 PH_FN vec3 estimateRadius(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float radius, uint kernel, float u) {
     float r2 = radius * radius;
     float invR2 = 1.0f / r2;
@@ -189,7 +172,7 @@ PH_FN vec3 estimateRadius(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, fl
     return sum * estimateScale(s) * (kernelNorm(kernel) * INV_PI * invR2);
 }
 
-// The seed's estimator: every photon of the cell holding x, spread over the cell's cross-section.
+// Wu's estimate: every photon of the cell holding x, spread over the cell's cross-section.
 PH_FN vec3 estimateCell(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float u) {
     ivec3 cell = cellOf(s.position, grid);
     uint begin;
@@ -290,7 +273,10 @@ PH_FN vec3 photonEstimate(BUF_PARAM uint map, PH_IN(Shading) s, uint estimator, 
     if (estimator == ESTIMATOR_KNN) {
         return estimateKnn(BUF_ARG grid, s, grid.radius, BUF(params).knnK, BUF(params).kernel);
     }
-    return estimateRadius(BUF_ARG grid, s, grid.radius, BUF(params).kernel, u);
+    if (estimator == ESTIMATOR_RADIUS || estimator == ESTIMATOR_PROGRESSIVE) {
+        return estimateRadius(BUF_ARG grid, s, grid.radius, BUF(params).kernel, u);
+    }
+    return vec3(uintBitsToFloat(0x7fc00000u));  // unreachable: the host dispatches known estimators only
 }
 
 // Photons in the cell holding x, for the grid-occupancy view.

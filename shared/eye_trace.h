@@ -100,28 +100,29 @@ PH_FN HitPoint tracePixel(BUF_PARAM uint pixel) {
             break;
         }
         Material m = BUF(materials)[hit.material];
+        uint surface = materialFlags(m);
         vec3 wo = -ray.direction;
-        if (m.type == MATERIAL_EMITTER) {
+        if ((surface & SURFACE_EMITS) != 0u) {
             if (dot(wo, hit.normal) > 0.0f) {
                 hp.direct += weight * m.emission;
             }
             break;
         }
-        // A reflective surface: its mirror coat continues the path, or its base ends it here.
+        // A mirror coat continues the path, or the surface's base ends it here.
         bool mirrorCoat = false;
-        if (m.type == MATERIAL_REFLECTIVE) {
+        if ((surface & SURFACE_SPECULAR_COAT) != 0u) {
             float pMirror = mirrorCoatProbability(m);
             mirrorCoat = rngNext(rng) < pMirror;
             weight *= mirrorCoat ? vec3(1.0f) : vec3(1.0f / (1.0f - pMirror));
         }
-        if (isDiffuseLike(m) && !mirrorCoat) {
+        if ((surface & SURFACE_ENDS_EYE_PATHS) != 0u && !mirrorCoat) {
             vec3 n = facingNormal(hit.normal, wo);
             hp.position = hit.position;
             hp.material = hit.material;
             hp.weight = weight;
             hp.normal = octEncode(n);
             hp.outgoing = octEncode(wo);
-            hp.direct += weight * directLight(BUF_ARG hit.position, n, wo, diffusePart(m), rng);
+            hp.direct += weight * directLight(BUF_ARG hit.position, n, wo, storedPart(m), rng);
             break;
         }
         BsdfSample bs;

@@ -39,12 +39,13 @@ PH_FN vec3 finalGather(BUF_PARAM PH_IN(Shading) s, uint estimator, PH_INOUT(Rng)
             }
             Material m = BUF(materials)[hit.material];
             vec3 wo = -ray.direction;
-            if (isDiffuseLike(m)) {
-                Shading there = makeShading(hit.position, facingNormal(hit.normal, wo), wo, diffusePart(m));
+            uint surface = materialFlags(m);
+            if ((surface & SURFACE_STORES_PHOTONS) != 0u) {
+                Shading there = makeShading(hit.position, facingNormal(hit.normal, wo), wo, storedPart(m));
                 sum += weight * photonEstimate(BUF_ARG MAP_GLOBAL, there, estimator, rngNext(rng));
                 break;
             }
-            if (!isSpecular(m)) {
+            if ((surface & SURFACE_CAUSTIC_CASTER) == 0u) {
                 break;
             }
             BsdfSample next = sampleBsdf(m, wo, hit.normal, rng);
@@ -71,9 +72,9 @@ PH_FN bool viewShowsMap(uint view, uint map) {
     return view == VIEW_FINAL || (view == VIEW_CAUSTIC && map == MAP_CAUSTIC) || (view == VIEW_GLOBAL && map == MAP_GLOBAL);
 }
 
-// The shading point of a hit point (its reflective coat is not part of it: see diffusePart).
+// The shading point of a hit point (a mirror coat is not part of it: see storedPart).
 PH_FN Shading hitPointShading(BUF_PARAM PH_IN(HitPoint) hp) {
-    return makeShading(hp.position, octDecode(hp.normal), octDecode(hp.outgoing), diffusePart(BUF(materials)[hp.material]));
+    return makeShading(hp.position, octDecode(hp.normal), octDecode(hp.outgoing), storedPart(BUF(materials)[hp.material]));
 }
 
 // The pixel's radiance once the photon estimates (reflected radiance at the hit point) are known.

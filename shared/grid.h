@@ -1,8 +1,8 @@
-// The photon map is a linear spatial hash (the seed's choice, after Gupte 2011): photons sorted by
+// The photon map is a linear spatial hash (Wu's choice, after Gupte 2011): photons sorted by
 // cell in one array, and cellStart[c] .. cellStart[c + 1] the range of cell c. No pointers, one
 // allocation, one copy. Two ways to number cells:
-//   GRID_BOUNDED: the seed's k³ cells over the scene's bounding cube; points outside are clamped
-//                 into the border cells (its equation (1), with the clamping it describes).
+//   GRID_BOUNDED: Wu's k³ cells over the scene's bounding cube; points outside are clamped
+//                 into the border cells (her equation (1), with the clamping she describes).
 //   GRID_HASHED:  unbounded integer cells (edge r or 2r) hashed into a power-of-two table
 //                 (Teschner et al., "Optimized Spatial Hashing for Collision Detection", 2003).
 //                 Cells are hashed in 4×4×4 blocks: Teschner's hash of the block, and the cell's

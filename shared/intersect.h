@@ -1,5 +1,5 @@
-// Ray-primitive intersection and the two scene queries every stage needs: the closest hit and
-// "is anything in the way". The scene is a handful of analytic primitives, tested linearly.
+// Ray-primitive intersection and the two scene queries every stage needs, the closest hit and
+// "is anything in the way", both through one traversal (traceRay).
 #ifndef PHOTON_SHARED_INTERSECT_H
 #define PHOTON_SHARED_INTERSECT_H
 
@@ -108,91 +108,94 @@ PH_FN float intersectTriangle(PH_IN(Ray) ray, PH_IN(Triangle) tri, float tMax) {
     return (t > 0.0f && t < tMax) ? t : tMax;
 }
 
-// Closest intersection along the ray within (0, ray.tMax).
-PH_FN bool traceClosest(BUF_PARAM PH_IN(Ray) ray, PH_OUT(Hit) hit) {
-    float tBest = ray.tMax;
-    uint kind = NONE;
-    uint index = NONE;
-    for (uint i = 0u; i < BUF(params).scene.sphereCount; ++i) {
-        float t = intersectSphere(ray, BUF(spheres)[i].center, BUF(spheres)[i].radius, tBest);
-        if (t < tBest) {
-            tBest = t;
-            kind = PRIM_SPHERE;
-            index = i;
+PH_CONST uint QUERY_CLOSEST = 0u;  // the nearest surface along the ray
+PH_CONST uint QUERY_ANY = 1u;      // whether there is any (shadow rays): the first one found will do
+
+PH_FN uint primitiveCount(BUF_PARAM uint kind) {
+    if (kind == PRIM_SPHERE) {
+        return BUF(params).scene.sphereCount;
+    }
+    if (kind == PRIM_PLANE) {
+        return BUF(params).scene.planeCount;
+    }
+    if (kind == PRIM_QUAD) {
+        return BUF(params).scene.quadCount;
+    }
+    return BUF(params).scene.triangleCount;
+}
+
+// Where the ray meets primitive (kind, index) within (0, tMax), or tMax if it does not.
+PH_FN float intersectPrimitive(BUF_PARAM uint kind, uint index, PH_IN(Ray) ray, float tMax) {
+    if (kind == PRIM_SPHERE) {
+        return intersectSphere(ray, BUF(spheres)[index].center, BUF(spheres)[index].radius, tMax);
+    }
+    if (kind == PRIM_PLANE) {
+        return intersectPlane(ray, BUF(planes)[index].normal, BUF(planes)[index].offset, tMax);
+    }
+    if (kind == PRIM_QUAD) {
+        return intersectQuad(ray, BUF(quads)[index], tMax);
+    }
+    return intersectTriangle(ray, BUF(triangles)[index], tMax);
+}
+
+// The one traversal of the scene: it visits the primitives the ray may meet and keeps the nearest
+// hit within (0, ray.tMax) (QUERY_ANY: stops at the first). Today the candidates are every
+// primitive, kind by kind; an acceleration structure replaces this loop and nothing else.
+PH_FN bool traceRay(BUF_PARAM PH_IN(Ray) ray, uint query, PH_OUT(float) t, PH_OUT(uint) kind, PH_OUT(uint) index) {
+    t = ray.tMax;
+    kind = NONE;
+    index = NONE;
+    for (uint k = 0u; k < PRIM_KIND_COUNT; ++k) {
+        uint count = primitiveCount(BUF_ARG k);
+        for (uint i = 0u; i < count; ++i) {
+            float tk = intersectPrimitive(BUF_ARG k, i, ray, t);
+            if (tk < t) {
+                t = tk;
+                kind = k;
+                index = i;
+                if (query == QUERY_ANY) {
+                    return true;
+                }
+            }
         }
     }
-    for (uint i = 0u; i < BUF(params).scene.planeCount; ++i) {
-        float t = intersectPlane(ray, BUF(planes)[i].normal, BUF(planes)[i].offset, tBest);
-        if (t < tBest) {
-            tBest = t;
-            kind = PRIM_PLANE;
-            index = i;
-        }
-    }
-    for (uint i = 0u; i < BUF(params).scene.quadCount; ++i) {
-        float t = intersectQuad(ray, BUF(quads)[i], tBest);
-        if (t < tBest) {
-            tBest = t;
-            kind = PRIM_QUAD;
-            index = i;
-        }
-    }
-    for (uint i = 0u; i < BUF(params).scene.triangleCount; ++i) {
-        float t = intersectTriangle(ray, BUF(triangles)[i], tBest);
-        if (t < tBest) {
-            tBest = t;
-            kind = PRIM_TRIANGLE;
-            index = i;
-        }
-    }
-    if (kind == NONE) {
-        return false;
-    }
-    hit.t = tBest;
-    hit.kind = kind;
-    hit.index = index;
-    hit.position = ray.origin + tBest * ray.direction;
+    return kind != NONE;
+}
+
+// The surface of primitive (kind, index) at a point on it: geometric normal and material.
+PH_FN void primitiveSurface(BUF_PARAM uint kind, uint index, vec3 p, PH_OUT(vec3) normal, PH_OUT(uint) material) {
     if (kind == PRIM_SPHERE) {
         Sphere s = BUF(spheres)[index];
-        hit.normal = (hit.position - s.center) * (1.0f / s.radius);
-        hit.material = s.material;
+        normal = (p - s.center) * (1.0f / s.radius);
+        material = s.material;
     } else if (kind == PRIM_PLANE) {
-        hit.normal = BUF(planes)[index].normal;
-        hit.material = BUF(planes)[index].material;
+        normal = BUF(planes)[index].normal;
+        material = BUF(planes)[index].material;
     } else if (kind == PRIM_QUAD) {
-        hit.normal = unitVector(BUF(quads)[index].w);
-        hit.material = BUF(quads)[index].material;
+        normal = unitVector(BUF(quads)[index].w);
+        material = BUF(quads)[index].material;
     } else {
-        hit.normal = unitVector(cross(BUF(triangles)[index].edge1, BUF(triangles)[index].edge2));
-        hit.material = BUF(triangles)[index].material;
+        normal = unitVector(cross(BUF(triangles)[index].edge1, BUF(triangles)[index].edge2));
+        material = BUF(triangles)[index].material;
     }
+}
+
+// Closest intersection along the ray within (0, ray.tMax).
+PH_FN bool traceClosest(BUF_PARAM PH_IN(Ray) ray, PH_OUT(Hit) hit) {
+    if (!traceRay(BUF_ARG ray, QUERY_CLOSEST, hit.t, hit.kind, hit.index)) {
+        return false;
+    }
+    hit.position = ray.origin + hit.t * ray.direction;
+    primitiveSurface(BUF_ARG hit.kind, hit.index, hit.position, hit.normal, hit.material);
     return true;
 }
 
 // Whether anything lies on the segment from origin along direction within (0, tMax).
 PH_FN bool traceOccluded(BUF_PARAM vec3 origin, vec3 direction, float tMax) {
-    Ray ray = makeRay(origin, direction, tMax);
-    for (uint i = 0u; i < BUF(params).scene.sphereCount; ++i) {
-        if (intersectSphere(ray, BUF(spheres)[i].center, BUF(spheres)[i].radius, tMax) < tMax) {
-            return true;
-        }
-    }
-    for (uint i = 0u; i < BUF(params).scene.planeCount; ++i) {
-        if (intersectPlane(ray, BUF(planes)[i].normal, BUF(planes)[i].offset, tMax) < tMax) {
-            return true;
-        }
-    }
-    for (uint i = 0u; i < BUF(params).scene.quadCount; ++i) {
-        if (intersectQuad(ray, BUF(quads)[i], tMax) < tMax) {
-            return true;
-        }
-    }
-    for (uint i = 0u; i < BUF(params).scene.triangleCount; ++i) {
-        if (intersectTriangle(ray, BUF(triangles)[i], tMax) < tMax) {
-            return true;
-        }
-    }
-    return false;
+    float t;
+    uint kind;
+    uint index;
+    return traceRay(BUF_ARG makeRay(origin, direction, tMax), QUERY_ANY, t, kind, index);
 }
 
 PH_NAMESPACE_END

@@ -78,10 +78,8 @@ struct PH_ALIGN16 Camera {
 
 struct PH_ALIGN16 SceneInfo {
     uint sphereCount; uint planeCount; uint quadCount; uint triangleCount;
-    uint materialCount; uint lightCount; uint targetCount; uint pad0;
-    vec3 boundsMin; float pad1;        // bounds of everything finite in the scene
-    vec3 boundsMax; float pad2;
-    vec3 background; float pad3;       // radiance of rays that leave the scene
+    uint lightCount; uint targetCount; uint pad0; uint pad1;
+    vec3 background; float pad2;       // radiance of rays that leave the scene
 };
 
 struct PH_ALIGN16 GridParams {
@@ -89,8 +87,9 @@ struct PH_ALIGN16 GridParams {
     uint resolution; uint kind; uint cellCount; uint cellOffset;
     // resolution: bounded grid cells per axis (k); kind: GRID_*; cellCount: k³ or the table size
     // (a power of two); cellOffset: where this map's cells start in cellCounts/cellStart
-    uint photonOffset; uint photonCapacity; float radius; float pad0;
-    // photonOffset/Capacity: this map's slice of the photon arrays; radius: query radius
+    uint photonOffset; uint photonCapacity; float radius; uint keyBits;
+    // photonOffset/Capacity: this map's slice of the photon arrays; radius: query radius;
+    // keyBits: bits of a cell key (cellCount ≤ 2^keyBits), for the deterministic sort
 };
 
 struct PH_ALIGN16 FrameParams {
@@ -102,22 +101,17 @@ struct PH_ALIGN16 FrameParams {
     // globalPaths/causticPaths: photons emitted this frame by the global and the caustic pass
     uint estimator; uint kernel; uint knnK; uint globalMode;
     uint gatherRays; uint lightSamples; uint view; uint flags;
-    float exposure; uint accumulated; uint gatherBudget; float pad2;
-    // accumulated: frames already averaged into the accumulation buffer (the progressive index i);
-    // gatherBudget: photons a query visits per cell before it subsamples the cell (0: all)
+    uint photonIdBits; uint accumulated; uint gatherBudget; uint pad0;
+    // photonIdBits: bits of a photon id this frame (photon_map.h); accumulated: frames already
+    // averaged into the accumulation buffer (the progressive index i); gatherBudget: photons a
+    // query visits per cell before it subsamples the cell (0: all)
 };
 
 // ---- Photon maps ------------------------------------------------------------------------------
 
 struct PH_ALIGN16 Photon {
     vec3 position; uint incoming;  // octahedral-encoded unit direction towards where it came from
-    vec3 power; uint flags;        // flux [W]; bounce count of the path when stored
-};
-
-// The 16-byte photon of the compact-photon experiment (CUDA only, see docs/performance.md): flux in
-// Ward's shared-exponent RGBE, no incoming direction.
-struct PH_ALIGN16 CompactPhoton {
-    vec3 position; uint power;
+    vec3 power; uint id;           // flux [W]; (path << PHOTON_BOUNCE_BITS) | bounce, see photonId()
 };
 
 // ---- Eye pass ---------------------------------------------------------------------------------
@@ -150,18 +144,16 @@ PH_SIZE(CausticTarget, 16); PH_OFFSET(CausticTarget, radius, 12);
 PH_SIZE(Camera, 64); PH_OFFSET(Camera, lensRadius, 12); PH_OFFSET(Camera, forward, 16);
 PH_OFFSET(Camera, focusDistance, 28); PH_OFFSET(Camera, right, 32); PH_OFFSET(Camera, tanHalfFovY, 44);
 PH_OFFSET(Camera, up, 48); PH_OFFSET(Camera, aspect, 60);
-PH_SIZE(SceneInfo, 80); PH_OFFSET(SceneInfo, materialCount, 16); PH_OFFSET(SceneInfo, boundsMin, 32);
-PH_OFFSET(SceneInfo, boundsMax, 48); PH_OFFSET(SceneInfo, background, 64);
+PH_SIZE(SceneInfo, 48); PH_OFFSET(SceneInfo, lightCount, 16); PH_OFFSET(SceneInfo, background, 32);
 PH_SIZE(GridParams, 48); PH_OFFSET(GridParams, cellSize, 12); PH_OFFSET(GridParams, resolution, 16);
 PH_OFFSET(GridParams, cellOffset, 28); PH_OFFSET(GridParams, photonOffset, 32);
-PH_OFFSET(GridParams, radius, 40);
-PH_SIZE(FrameParams, 64 + 80 + 2 * 48 + 5 * 16); PH_OFFSET(FrameParams, scene, 64);
-PH_OFFSET(FrameParams, grids, 144); PH_OFFSET(FrameParams, width, 240);
-PH_OFFSET(FrameParams, globalPaths, 256); PH_OFFSET(FrameParams, estimator, 272);
-PH_OFFSET(FrameParams, gatherRays, 288); PH_OFFSET(FrameParams, exposure, 304);
-PH_OFFSET(FrameParams, gatherBudget, 312);
-PH_SIZE(Photon, 32); PH_OFFSET(Photon, incoming, 12); PH_OFFSET(Photon, power, 16); PH_OFFSET(Photon, flags, 28);
-PH_SIZE(CompactPhoton, 16); PH_OFFSET(CompactPhoton, power, 12);
+PH_OFFSET(GridParams, radius, 40); PH_OFFSET(GridParams, keyBits, 44);
+PH_SIZE(FrameParams, 64 + 48 + 2 * 48 + 5 * 16); PH_OFFSET(FrameParams, scene, 64);
+PH_OFFSET(FrameParams, grids, 112); PH_OFFSET(FrameParams, width, 208);
+PH_OFFSET(FrameParams, globalPaths, 224); PH_OFFSET(FrameParams, estimator, 240);
+PH_OFFSET(FrameParams, gatherRays, 256); PH_OFFSET(FrameParams, photonIdBits, 272);
+PH_OFFSET(FrameParams, gatherBudget, 280);
+PH_SIZE(Photon, 32); PH_OFFSET(Photon, incoming, 12); PH_OFFSET(Photon, power, 16); PH_OFFSET(Photon, id, 28);
 PH_SIZE(HitPoint, 48); PH_OFFSET(HitPoint, material, 12); PH_OFFSET(HitPoint, weight, 16);
 PH_OFFSET(HitPoint, normal, 28); PH_OFFSET(HitPoint, direct, 32); PH_OFFSET(HitPoint, outgoing, 44);
 }  // namespace photon

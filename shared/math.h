@@ -9,8 +9,6 @@ PH_NAMESPACE_BEGIN
 
 PH_FN float maxComponent(vec3 v) { return max(v.x, max(v.y, v.z)); }
 
-PH_FN float luminance(vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
-
 PH_FN float lengthSquared(vec3 v) { return dot(v, v); }
 
 PH_FN vec3 unitVector(vec3 v) { return v * (1.0f / sqrt(dot(v, v))); }
@@ -104,30 +102,6 @@ PH_FN vec3 octDecodeUnnormalized(uint e) {
 }
 
 PH_FN vec3 octDecode(uint e) { return unitVector(octDecodeUnnormalized(e)); }
-
-// Ward's shared-exponent RGBE: 8 bits per channel under the exponent of the largest (Graphics Gems
-// II, 1991). Non-negative finite input; built from bit operations, so exact on every backend.
-PH_FN uint encodeRgbe(vec3 c) {
-    float m = maxComponent(c);
-    if (!(m > 1.0e-30f)) {
-        return 0u;
-    }
-    int e = int((floatBitsToUint(m) >> 23u) & 0xffu) - 126;  // m < 2^e
-    float scale = uintBitsToFloat(uint(127 + 8 - e) << 23u);  // 256 / 2^e
-    uint r = min(uint(c.x * scale), 255u);
-    uint g = min(uint(c.y * scale), 255u);
-    uint b = min(uint(c.z * scale), 255u);
-    return r | (g << 8u) | (b << 16u) | (uint(e + 128) << 24u);
-}
-
-PH_FN vec3 decodeRgbe(uint v) {
-    if (v == 0u) {
-        return vec3(0.0f);
-    }
-    int e = int(v >> 24u) - 128;
-    float scale = uintBitsToFloat(uint(127 - 8 + e) << 23u);  // 2^e / 256
-    return (vec3(float(v & 0xffu), float((v >> 8u) & 0xffu), float((v >> 16u) & 0xffu)) + vec3(0.5f)) * scale;
-}
 
 // Start a new ray at a surface point without hitting that surface again: step off the surface
 // on the side the ray leaves to, by a distance relative to the coordinates' magnitude.

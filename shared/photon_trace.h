@@ -37,6 +37,9 @@ struct PhotonPath {
 
 PH_FN bool photonPathAlive(PH_IN(PhotonPath) path) { return (path.flags & PATH_ALIVE) != 0u; }
 
+// The identity of the photon stored by path `path` at bounce `bounce`: unique within a map.
+PH_FN uint photonId(uint path, uint bounce) { return (path << PHOTON_BOUNCE_BITS) | bounce; }
+
 PH_FN PhotonPath startPhotonPath(BUF_PARAM uint index) {
     PhotonPath path;
     path.rng = rngCreate(index, BUF(params).frameIndex, BUF(params).seed, STREAM_PHOTON);
@@ -72,7 +75,8 @@ PH_FN uint photonBounce(BUF_PARAM PH_INOUT(PhotonPath) path, PH_OUT(Photon) phot
     }
     Material m = BUF(materials)[hit.material];
     bool causticPass = (path.flags & PATH_CAUSTIC_PASS) != 0u;
-    if (path.depth == 0u && isSpecular(m) && hit.kind != PRIM_PLANE) {
+    uint surface = materialFlags(m);
+    if (path.depth == 0u && (surface & SURFACE_CAUSTIC_CASTER) != 0u && hit.kind != PRIM_PLANE) {
         path.flags |= PATH_FROM_TARGET;
     }
     if (causticPass && (path.flags & PATH_FROM_TARGET) == 0u) {
@@ -80,7 +84,7 @@ PH_FN uint photonBounce(BUF_PARAM PH_INOUT(PhotonPath) path, PH_OUT(Photon) phot
         return 0u;
     }
     uint store = 0u;
-    if (isDiffuseLike(m)) {
+    if ((surface & SURFACE_STORES_PHOTONS) != 0u) {
         bool causticPath = (path.flags & PATH_SPECULAR_ONLY) != 0u && path.depth > 0u;
         if (causticPass) {
             store = causticPath ? STORE_CAUSTIC : 0u;
@@ -97,7 +101,7 @@ PH_FN uint photonBounce(BUF_PARAM PH_INOUT(PhotonPath) path, PH_OUT(Photon) phot
         photon.position = hit.position;
         photon.incoming = octEncode(-path.direction);
         photon.power = path.power;
-        photon.flags = path.depth;
+        photon.id = photonId(path.rng.index, path.depth);
     }
     if (path.depth + 1u >= BUF(params).maxPhotonDepth) {
         path.flags = 0u;
@@ -119,6 +123,30 @@ PH_FN uint photonBounce(BUF_PARAM PH_INOUT(PhotonPath) path, PH_OUT(Photon) phot
     path.direction = bs.direction;
     path.depth += 1u;
     return store;
+}
+
+// The next slot of map `map`; slots beyond its capacity are counted but not written, so that the
+// host learns how much room the frame needed.
+PH_FN void appendPhoton(BUF_PARAM uint map, PH_IN(Photon) photon) {
+    uint slot = PH_RESERVE_SLOT(BUF(counters)[COUNTER_STORED_GLOBAL + map]);
+    if (slot < BUF(params).grids[map].photonCapacity) {
+        BUF(photons)[BUF(params).grids[map].photonOffset + slot] = photon;
+    }
+}
+
+// Stage tracePhotons, for one path index in [0, globalPaths + causticPaths).
+PH_FN void tracePhotonPath(BUF_PARAM uint index) {
+    PhotonPath path = startPhotonPath(BUF_ARG index);
+    while (photonPathAlive(path)) {
+        Photon photon;
+        uint store = photonBounce(BUF_ARG path, photon);
+        if ((store & STORE_GLOBAL) != 0u) {
+            appendPhoton(BUF_ARG MAP_GLOBAL, photon);
+        }
+        if ((store & STORE_CAUSTIC) != 0u) {
+            appendPhoton(BUF_ARG MAP_CAUSTIC, photon);
+        }
+    }
 }
 
 PH_NAMESPACE_END

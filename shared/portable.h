@@ -22,6 +22,9 @@
 //  - Buffer structs are declared `struct PH_ALIGN16 Name`.
 //  - Buffers are reached through BUF(name): a global buffer in GLSL, a member of the Bindings
 //    struct in C++ that every such function receives first (BUF_PARAM / BUF_ARG).
+//  - Atomics are PH_ATOMIC_ADD(buffer element, value), which returns the old value: GLSL's
+//    atomicAdd, CUDA's atomicAdd, a relaxed __atomic_fetch_add on the CPU. PH_RESERVE_SLOT(counter)
+//    hands out one slot of an append buffer (on CUDA, one atomic per warp for all its threads).
 #ifndef PHOTON_SHARED_PORTABLE_H
 #define PHOTON_SHARED_PORTABLE_H
 
@@ -34,13 +37,13 @@
 #define PH_CONST const
 #define PH_NAMESPACE_BEGIN
 #define PH_NAMESPACE_END
-#define PH_STATIC_ASSERT(cond, msg)
-#define PH_NOT(b) not(b)
 #define PH_PRECISE precise
 #define PH_ALIGN16
 #define BUF_PARAM
 #define BUF_ARG
 #define BUF(name) name
+#define PH_ATOMIC_ADD(lvalue, value) atomicAdd(lvalue, value)
+#define PH_RESERVE_SLOT(counter) atomicAdd(counter, 1u)
 
 #else
 // ---- C++ and CUDA ----------------------------------------------------------------------------
@@ -60,8 +63,6 @@
     using namespace glm;   \
     using uint = std::uint32_t;
 #define PH_NAMESPACE_END }
-#define PH_STATIC_ASSERT(cond, msg) static_assert(cond, msg)
-#define PH_NOT(b) glm::not_(b)
 #define PH_PRECISE
 // Buffer structs are multiples of 16 bytes; saying so lets compilers load them 16 bytes at a time
 // (GLM's vec3 alone would make them 4-byte aligned).
@@ -69,6 +70,30 @@
 #define BUF_PARAM const Bindings &bindings,
 #define BUF_ARG bindings,
 #define BUF(name) bindings.name
+
+#ifdef __CUDACC__
+#include <cooperative_groups.h>
+namespace photon {
+// One slot of an append buffer for each calling thread: the threads of a warp that append at the
+// same time share one atomic, since a million threads on one counter would queue up at L2.
+__device__ inline std::uint32_t reserveSlotCoalesced(std::uint32_t* counter) {
+    namespace cg = cooperative_groups;
+    cg::coalesced_group active = cg::coalesced_threads();
+    std::uint32_t base = 0u;
+    if (active.thread_rank() == 0) {
+        base = atomicAdd(counter, active.size());
+    }
+    return active.shfl(base, 0) + active.thread_rank();
+}
+}  // namespace photon
+#endif
+#ifdef __CUDA_ARCH__
+#define PH_ATOMIC_ADD(lvalue, value) atomicAdd(&(lvalue), (value))
+#define PH_RESERVE_SLOT(counter) reserveSlotCoalesced(&(counter))
+#else
+#define PH_ATOMIC_ADD(lvalue, value) __atomic_fetch_add(&(lvalue), (value), __ATOMIC_RELAXED)
+#define PH_RESERVE_SLOT(counter) PH_ATOMIC_ADD(counter, 1u)
+#endif
 #endif
 
 #endif

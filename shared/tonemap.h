@@ -7,10 +7,6 @@
 
 PH_NAMESPACE_BEGIN
 
-PH_CONST uint TONEMAP_CLAMP = 0u;
-PH_CONST uint TONEMAP_REINHARD = 1u;
-PH_CONST uint TONEMAP_ACES = 2u;  // Narkowicz's fit of the ACES filmic curve
-
 PH_FN float srgbEncode(float c) {
     c = clamp(c, 0.0f, 1.0f);
     return c <= 0.0031308f ? 12.92f * c : 1.055f * pow(c, 1.0f / 2.4f) - 0.055f;

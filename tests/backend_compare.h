@@ -68,6 +68,32 @@ inline void expectSamePhotonMaps(const PhotonMaps& actual, const PhotonMaps& exp
     }
 }
 
+// The same photons in the same order: what deterministic photon maps promise.
+inline void expectIdenticalPhotonMaps(const PhotonMaps& actual, const PhotonMaps& expected) {
+    for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
+        SCOPED_TRACE(m == MAP_GLOBAL ? "global map" : "caustic map");
+        ASSERT_EQ(actual.photons[m].size(), expected.photons[m].size());
+        ASSERT_TRUE(actual.cellStart[m] == expected.cellStart[m]) << "cell ranges differ";
+        std::size_t differing = 0;
+        for (std::size_t i = 0; i < actual.photons[m].size(); ++i) {
+            differing += std::memcmp(&actual.photons[m][i], &expected.photons[m][i], sizeof(Photon)) != 0 ? 1 : 0;
+        }
+        EXPECT_EQ(differing, 0u) << "photons not in the same place";
+    }
+}
+
+// Pixels whose values are not bit-identical.
+inline std::size_t differingPixels(const Image& a, const Image& b) {
+    if (a.pixels.size() != b.pixels.size()) {
+        return std::max(a.pixels.size(), b.pixels.size());
+    }
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+        n += std::memcmp(&a.pixels[i], &b.pixels[i], sizeof(glm::vec4)) != 0 ? 1 : 0;
+    }
+    return n;
+}
+
 inline void expectSameHitPoints(const std::vector<HitPoint>& actual, const std::vector<HitPoint>& expected) {
     ASSERT_EQ(actual.size(), expected.size());
     std::size_t differing = 0;

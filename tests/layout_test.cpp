@@ -39,29 +39,22 @@ const Member kMembers[] = {
     PH_MEMBER(Camera, position), PH_MEMBER(Camera, lensRadius), PH_MEMBER(Camera, forward),
     PH_MEMBER(Camera, focusDistance), PH_MEMBER(Camera, right), PH_MEMBER(Camera, tanHalfFovY),
     PH_MEMBER(Camera, up), PH_MEMBER(Camera, aspect),
-    PH_MEMBER(SceneInfo, sphereCount), PH_MEMBER(SceneInfo, triangleCount), PH_MEMBER(SceneInfo, materialCount),
-    PH_MEMBER(SceneInfo, targetCount), PH_MEMBER(SceneInfo, boundsMin), PH_MEMBER(SceneInfo, boundsMax),
-    PH_MEMBER(SceneInfo, background),
+    PH_MEMBER(SceneInfo, sphereCount), PH_MEMBER(SceneInfo, triangleCount), PH_MEMBER(SceneInfo, lightCount),
+    PH_MEMBER(SceneInfo, targetCount), PH_MEMBER(SceneInfo, background),
     PH_MEMBER(GridParams, origin), PH_MEMBER(GridParams, cellSize), PH_MEMBER(GridParams, resolution),
     PH_MEMBER(GridParams, kind), PH_MEMBER(GridParams, cellCount), PH_MEMBER(GridParams, cellOffset),
     PH_MEMBER(GridParams, photonOffset), PH_MEMBER(GridParams, photonCapacity), PH_MEMBER(GridParams, radius),
+    PH_MEMBER(GridParams, keyBits),
     PH_MEMBER(FrameParams, camera), PH_MEMBER(FrameParams, scene), PH_MEMBER(FrameParams, grids),
     PH_MEMBER(FrameParams, width), PH_MEMBER(FrameParams, seed), PH_MEMBER(FrameParams, globalPaths),
     PH_MEMBER(FrameParams, maxEyeDepth), PH_MEMBER(FrameParams, estimator), PH_MEMBER(FrameParams, globalMode),
-    PH_MEMBER(FrameParams, gatherRays), PH_MEMBER(FrameParams, flags), PH_MEMBER(FrameParams, exposure),
+    PH_MEMBER(FrameParams, gatherRays), PH_MEMBER(FrameParams, flags), PH_MEMBER(FrameParams, photonIdBits),
     PH_MEMBER(FrameParams, accumulated), PH_MEMBER(FrameParams, gatherBudget),
-    PH_MEMBER(Photon, position), PH_MEMBER(Photon, incoming), PH_MEMBER(Photon, power), PH_MEMBER(Photon, flags),
+    PH_MEMBER(Photon, position), PH_MEMBER(Photon, incoming), PH_MEMBER(Photon, power), PH_MEMBER(Photon, id),
     PH_MEMBER(HitPoint, position), PH_MEMBER(HitPoint, material), PH_MEMBER(HitPoint, weight),
     PH_MEMBER(HitPoint, normal), PH_MEMBER(HitPoint, direct), PH_MEMBER(HitPoint, outgoing),
 };
 
-// Buffer arrays and the C++ size of their element: the GLSL array stride must equal it.
-const std::map<std::string, std::size_t> kStrides = {
-    {"spheres", sizeof(Sphere)},   {"planes", sizeof(Plane)},         {"quads", sizeof(Quad)},
-    {"triangles", sizeof(Triangle)}, {"materials", sizeof(Material)}, {"lights", sizeof(Light)},
-    {"targets", sizeof(CausticTarget)}, {"photons", sizeof(Photon)},  {"sortedPhotons", sizeof(Photon)},
-    {"hitPoints", sizeof(HitPoint)}, {"frameRadiance", 16},           {"accumulation", 16},
-};
 
 TEST(Layout, GlslOffsetsEqualCpp) {
     std::ifstream in(PHOTON_LAYOUT_REFLECTION);
@@ -85,9 +78,18 @@ TEST(Layout, GlslOffsetsEqualCpp) {
         ASSERT_NE(it, glsl.end()) << m.type << "::" << m.name << " not laid out in any GLSL buffer";
         EXPECT_EQ(it->second, m.offset) << m.type << "::" << m.name;
     }
-    for (const auto& [name, size] : kStrides) {
-        ASSERT_TRUE(strides.count(name)) << name;
-        EXPECT_EQ(strides[name], size) << name;
+    // Every buffer of the list (shared/bindings.h): its GLSL array stride is the C++ element size,
+    // and its block has the list's binding.
+    std::map<std::string, std::uint32_t> bindings;
+    for (const auto& ssbo : reflection["ssbos"]) {
+        bindings[ssbo["name"]] = ssbo["binding"];
+    }
+    for (const BufferInfo& info : kBuffers) {
+        ASSERT_TRUE(strides.count(info.name)) << info.name << " is not laid out in the GLSL shader";
+        EXPECT_EQ(strides[info.name], info.elementBytes) << info.name;
+        std::string block = std::string(info.name) + "Buffer";
+        ASSERT_TRUE(bindings.count(block)) << block;
+        EXPECT_EQ(bindings[block], info.binding) << block;
     }
 }
 

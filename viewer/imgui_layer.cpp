@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "vulkan/check.h"
+#include "vulkan/memory.h"
 
 namespace photon::viewer {
 namespace {
@@ -67,32 +68,11 @@ ImGuiLayer::~ImGuiLayer() {
     vkDestroyDescriptorPool(context_.device, pool_, nullptr);
 }
 
-// The font atlas goes to the device once, in a command buffer of its own, waited for.
+// The font atlas goes to the device once, through the backend's one-off transfers.
 void ImGuiLayer::uploadFonts() {
-    VkDevice device = context_.device;
-    VkCommandPool pool = VK_NULL_HANDLE;
-    VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-    poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
-    poolInfo.queueFamilyIndex = context_.queueFamily;
-    VK_CHECK(vkCreateCommandPool(device, &poolInfo, nullptr, &pool));
-    VkCommandBufferAllocateInfo allocation{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    allocation.commandPool = pool;
-    allocation.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    allocation.commandBufferCount = 1;
-    VkCommandBuffer cmd = VK_NULL_HANDLE;
-    VK_CHECK(vkAllocateCommandBuffers(device, &allocation, &cmd));
-    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
-    ImGui_ImplVulkan_CreateFontsTexture(cmd);
-    VK_CHECK(vkEndCommandBuffer(cmd));
-    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    submit.commandBufferCount = 1;
-    submit.pCommandBuffers = &cmd;
-    VK_CHECK(vkQueueSubmit(context_.queue, 1, &submit, VK_NULL_HANDLE));
-    VK_CHECK(vkQueueWaitIdle(context_.queue));
+    vk::Transfers transfers(context_);
+    transfers.run([](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); });
     ImGui_ImplVulkan_DestroyFontUploadObjects();
-    vkDestroyCommandPool(device, pool, nullptr);
 }
 
 void ImGuiLayer::newFrame(VkExtent2D size, float seconds) {

@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 #include "vulkan/check.h"
+#include "vulkan/memory.h"
 
 namespace photon::viewer {
 
@@ -23,18 +24,9 @@ OffscreenTarget::OffscreenTarget(const vk::Context& context, VkExtent2D extent, 
 
     VkMemoryRequirements requirements;
     vkGetImageMemoryRequirements(device, image_, &requirements);
-    std::uint32_t type = VK_MAX_MEMORY_TYPES;
-    for (std::uint32_t i = 0; i < context.memoryProperties.memoryTypeCount && type == VK_MAX_MEMORY_TYPES; ++i) {
-        bool allowed = (requirements.memoryTypeBits & (1u << i)) != 0;
-        bool local = (context.memoryProperties.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT) != 0;
-        type = allowed && local ? i : type;
-    }
-    if (type == VK_MAX_MEMORY_TYPES) {
-        throw RuntimeError("no device-local memory type fits the offscreen image");
-    }
     VkMemoryAllocateInfo allocation{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     allocation.allocationSize = requirements.size;
-    allocation.memoryTypeIndex = type;
+    allocation.memoryTypeIndex = vk::findMemoryType(context, requirements.memoryTypeBits, vk::MemoryUse::Device);
     VK_CHECK(vkAllocateMemory(device, &allocation, nullptr, &memory_));
     VK_CHECK(vkBindImageMemory(device, image_, memory_, 0));
 

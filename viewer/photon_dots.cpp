@@ -5,6 +5,7 @@
 #include "shared/bindings.h"
 #include "vulkan/check.h"
 #include "vulkan/objects.h"
+#include "vulkan/pipelines.h"
 
 namespace photon::viewer {
 namespace spirv {
@@ -27,20 +28,7 @@ PhotonDots::PhotonDots(const vk::Context& context, const vk::VulkanBackend& back
     pool_ = descriptors.pool;
     set_ = descriptors.set;
 
-    VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-    moduleInfo.codeSize = sizeof(spirv::viewer_dots);
-    moduleInfo.pCode = spirv::viewer_dots;
-    VkShaderModule module = VK_NULL_HANDLE;
-    VK_CHECK(vkCreateShaderModule(device, &moduleInfo, nullptr, &module));
-    VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-    info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
-    info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-    info.stage.module = module;
-    info.stage.pName = "main";
-    info.layout = layout_;
-    VkResult result = vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline_);
-    vkDestroyShaderModule(device, module, nullptr);
-    VK_CHECK(result);
+    pipeline_ = vk::createComputePipeline(device, layout_, spirv::viewer_dots, sizeof(spirv::viewer_dots));
     resize(1, 1);
 }
 
@@ -61,14 +49,8 @@ void PhotonDots::resize(std::uint32_t width, std::uint32_t height) {
     dots_ = vk::Buffer();
     dots_ = vk::Buffer(context_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                        vk::MemoryUse::Device);
-    VkDescriptorBufferInfo bufferInfo{dots_.handle(), 0, bytes};
-    VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    write.dstSet = set_;
-    write.dstBinding = DOTS_BINDING_DOTS;
-    write.descriptorCount = 1;
-    write.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    write.pBufferInfo = &bufferInfo;
-    vkUpdateDescriptorSets(context_.device, 1, &write, 0, nullptr);
+    vk::writeBufferDescriptor(context_.device, set_, DOTS_BINDING_DOTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, dots_.handle(),
+                              bytes);
 }
 
 void PhotonDots::record(VkCommandBuffer cmd, const vk::VulkanBackend& backend, float brightness, float depthTolerance) {

@@ -140,8 +140,8 @@ void Viewer::finishFrame() {
     VK_CHECK(vkResetFences(context_->device, 1, &frame_.done));
     frame_.pending = false;
 
-    FrameStats stats = backend_->frameStats(backend_->lastFrameParams());
-    backend_->endFrame(stats);
+    backend_->endFrame(backend_->frameResult());
+    const FrameStats& stats = backend_->lastFrameStats();
     FrameRecord record;
     auto now = std::chrono::steady_clock::now();
     record.loopMs = std::chrono::duration<double, std::milli>(now - lastFinish_).count();

@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "check.h"
+#include "core/error.h"
 #include "glsl/dispatch.h"
 #include "objects.h"
 
@@ -47,60 +48,66 @@ void VulkanBackend::ensureBuffer(std::uint32_t binding, VkDeviceSize bytes) {
     cellCountsDirty_ = cellCountsDirty_ || binding == BINDING_CELL_COUNTS;
 }
 
-// Scene arrays to their bindings; an empty array still gets a buffer of one zeroed element.
-void VulkanBackend::uploadScene(const Scene& scene) {
-    struct Array {
-        std::uint32_t binding;
-        const void* data;
-        std::size_t count;
-        std::size_t elementBytes;
-    };
-    const Array arrays[] = {
-        {BINDING_SPHERES, scene.spheres.data(), scene.spheres.size(), sizeof(Sphere)},
-        {BINDING_PLANES, scene.planes.data(), scene.planes.size(), sizeof(Plane)},
-        {BINDING_QUADS, scene.quads.data(), scene.quads.size(), sizeof(Quad)},
-        {BINDING_TRIANGLES, scene.triangles.data(), scene.triangles.size(), sizeof(Triangle)},
-        {BINDING_MATERIALS, scene.materials.data(), scene.materials.size(), sizeof(Material)},
-        {BINDING_LIGHTS, scene.lights.data(), scene.lights.size(), sizeof(Light)},
-        {BINDING_TARGETS, scene.targets.data(), scene.targets.size(), sizeof(CausticTarget)},
-    };
-    for (const Array& a : arrays) {
-        plan_.bytes[a.binding] = VkDeviceSize(std::max<std::size_t>(a.count, 1)) * a.elementBytes;
-    }
-    checkLimits(*context_, plan_, width_, height_);
-    for (const Array& a : arrays) {
-        VkDeviceSize bytes = plan_.bytes[a.binding];
-        ensureBuffer(a.binding, bytes);
-        std::vector<unsigned char> data(bytes, 0);
-        if (a.count > 0) {
-            std::memcpy(data.data(), a.data, a.count * a.elementBytes);
+MemoryLimits VulkanBackend::memoryLimits() { return deviceMemoryLimits(*context_); }
+
+// The counters buffer also holds the grid build's indirect-dispatch arguments, and cellStart the
+// upper levels of the scan.
+// The deterministic build's sort needs buffers of its own.
+void VulkanBackend::adjustPlan(BufferPlan& plan, const PhotonBudget& budget) {
+    plan.elements[BINDING_COUNTERS] = COUNTER_WORDS;
+    plan.elements[BINDING_CELL_START] = planScan(budget, pipelines_.scanGroupSize).cellStartEntries;
+    plan.scratchBytes = 0;
+    if (settings().deterministic) {
+        std::uint32_t capacity = std::max(budget.capacity[MAP_GLOBAL], budget.capacity[MAP_CAUSTIC]);
+        VkDeviceSize largest = PhotonSort::largestBufferFor(capacity);
+        VkDeviceSize limit = context_->properties.limits.maxStorageBufferRange;
+        if (largest > limit) {
+            throw InputError("deterministic photon maps: the sort's keys need " + formatMiB(largest) + ", more than the " +
+                             formatMiB(limit) + " one buffer may span on " + context_->properties.deviceName +
+                             " (maxStorageBufferRange); lower the photons per frame (--photons)");
         }
-        transfers_.upload(buffers_[a.binding], data.data(), bytes);
+        plan.scratchBytes = PhotonSort::bytesFor(capacity);
+    }
+}
+
+// Scene arrays to their bindings; an empty array still gets a buffer of one zeroed element.
+void VulkanBackend::uploadScene(const Scene& scene, const BufferPlan& plan) {
+    for (const BufferInfo& info : kBuffers) {
+        if (info.size != BUFFER_PER_SCENE) {
+            continue;
+        }
+        VkDeviceSize bytes = plan.bytes(info.binding);
+        ensureBuffer(info.binding, bytes);
+        HostArray array = sceneArray(scene, info.binding);
+        std::vector<unsigned char> data(bytes, 0);
+        if (array.count > 0) {
+            std::memcpy(data.data(), array.data, array.count * info.elementBytes);
+        }
+        transfers_.upload(buffers_[info.binding], data.data(), bytes);
     }
     context_->checkValidation("uploading the scene");
 }
 
-// Every frame buffer, sized for the budget and image; limits are checked before anything is
-// allocated. Buffers whose size is unchanged are kept, so a grown photon map keeps the
-// accumulated image.
-void VulkanBackend::allocate(const PhotonBudget& budget, std::uint32_t width, std::uint32_t height) {
-    BufferPlan plan = planBuffers(budget, width, height, pipelines_.scanGroupSize);
-    for (std::uint32_t b = BINDING_SPHERES; b <= BINDING_TARGETS; ++b) {
-        plan.bytes[b] = plan_.bytes[b];
+// Every frame buffer, as the plan sizes it. Buffers whose size is unchanged are kept, so a grown
+// photon map keeps the accumulated image.
+void VulkanBackend::allocate(const BufferPlan& plan, const PhotonBudget& budget, std::uint32_t, std::uint32_t) {
+    scan_ = planScan(budget, pipelines_.scanGroupSize);
+    if (settings().deterministic) {
+        if (!sort_) {
+            sort_ = std::make_unique<PhotonSort>(*context_, pipelines_);
+        }
+        sort_->reserve(std::max(budget.capacity[MAP_GLOBAL], budget.capacity[MAP_CAUSTIC]));
     }
-    checkLimits(*context_, plan, width, height);
-    plan_ = plan;
-    width_ = width;
-    height_ = height;
-    for (std::uint32_t b = 0; b < BINDING_COUNT; ++b) {
-        if (b < BINDING_SPHERES || b > BINDING_TARGETS) {
-            ensureBuffer(b, plan.bytes[b]);
+    ensureBuffer(BINDING_PARAMS, plan.bytes(BINDING_PARAMS));
+    for (const BufferInfo& info : kBuffers) {
+        if (info.size != BUFFER_PER_SCENE) {
+            ensureBuffer(info.binding, plan.bytes(info.binding));
         }
     }
     context_->checkValidation("allocating the frame buffers");
 }
 
-FrameStats VulkanBackend::runFrame(const FrameParams& params) {
+FrameResult VulkanBackend::runFrame(const FrameParams& params) {
     VkCommandBuffer cmd = frame_.cmd;
     VK_CHECK(vkResetCommandBuffer(cmd, 0));
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
@@ -116,7 +123,7 @@ FrameStats VulkanBackend::runFrame(const FrameParams& params) {
     VK_CHECK(vkQueueSubmit(context_->queue, 1, &submit, frame_.done));
     VK_CHECK(vkWaitForFences(context_->device, 1, &frame_.done, VK_TRUE, UINT64_MAX));
     VK_CHECK(vkResetFences(context_->device, 1, &frame_.done));
-    return frameStats(params);
+    return frameResult();
 }
 
 void VulkanBackend::recordStatsReadback(VkCommandBuffer cmd) {
@@ -131,17 +138,10 @@ void VulkanBackend::recordStatsReadback(VkCommandBuffer cmd) {
                   VK_ACCESS_HOST_READ_BIT);
 }
 
-FrameStats VulkanBackend::frameStats(const FrameParams& params) {
-    FrameStats stats;
+FrameResult VulkanBackend::frameResult() {
+    FrameResult stats;
     const auto* counters = static_cast<const std::uint32_t*>(frame_.counters.mapped());
-    for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
-        std::uint32_t counter = counters[m == MAP_GLOBAL ? COUNTER_STORED_GLOBAL : COUNTER_STORED_CAUSTIC];
-        stats.stored[m] = counter;
-        stats.capacity[m] = params.grids[m].photonCapacity;
-        stored_[m] = std::min(counter, params.grids[m].photonCapacity);
-    }
-    stats.emitted[MAP_GLOBAL] = params.globalPaths;
-    stats.emitted[MAP_CAUSTIC] = params.causticPaths;
+    std::copy(counters, counters + COUNTER_COUNT, stats.counters);
     if (context_->timestampValidBits > 0) {
         std::uint64_t ticks[kTimestampCount] = {};
         VK_CHECK(vkGetQueryPoolResults(context_->device, frame_.timestamps, 0, kTimestampCount, sizeof(ticks), ticks,
@@ -159,38 +159,9 @@ FrameStats VulkanBackend::frameStats(const FrameParams& params) {
     return stats;
 }
 
-PhotonMaps VulkanBackend::readPhotonMaps() {
-    PhotonMaps maps;
-    const FrameParams& params = lastFrameParams();
-    for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
-        const GridParams& grid = params.grids[m];
-        maps.photons[m].resize(stored_[m]);
-        transfers_.download(buffers_[BINDING_SORTED_PHOTONS], VkDeviceSize(grid.photonOffset) * sizeof(Photon),
-                            maps.photons[m].data(), VkDeviceSize(stored_[m]) * sizeof(Photon));
-        maps.cellStart[m].resize(std::size_t(grid.cellCount) + 1);
-        transfers_.download(buffers_[BINDING_CELL_START], VkDeviceSize(grid.cellOffset) * sizeof(std::uint32_t),
-                            maps.cellStart[m].data(), maps.cellStart[m].size() * sizeof(std::uint32_t));
-    }
-    context_->checkValidation("reading the photon maps");
-    return maps;
+void VulkanBackend::readBuffer(std::uint32_t binding, std::uint64_t offset, std::uint64_t bytes, void* data) {
+    transfers_.download(buffers_[binding], offset, data, bytes);
+    context_->checkValidation("reading a buffer back");
 }
-
-std::vector<HitPoint> VulkanBackend::readHitPoints() {
-    std::vector<HitPoint> hitPoints(std::size_t(width_) * height_);
-    transfers_.download(buffers_[BINDING_HIT_POINTS], 0, hitPoints.data(), hitPoints.size() * sizeof(HitPoint));
-    context_->checkValidation("reading the hit points");
-    return hitPoints;
-}
-
-Image VulkanBackend::readImage(std::uint32_t binding) {
-    Image image(width_, height_);
-    transfers_.download(buffers_[binding], 0, image.pixels.data(), image.pixels.size() * sizeof(glm::vec4));
-    context_->checkValidation("reading an image");
-    return image;
-}
-
-Image VulkanBackend::readFrame() { return readImage(BINDING_FRAME); }
-
-Image VulkanBackend::readAccumulation() { return readImage(BINDING_ACCUMULATION); }
 
 }  // namespace photon::vk

@@ -12,9 +12,11 @@
 #include <vulkan/vulkan.h>
 
 #include "buffer_plan.h"
+#include "scan.h"
 #include "context.h"
 #include "core/backend.h"
 #include "memory.h"
+#include "photon_sort.h"
 #include "pipelines.h"
 
 namespace photon::vk {
@@ -30,9 +32,7 @@ public:
     std::string name() const override { return "vulkan"; }
     std::string deviceName() const override { return context_->properties.deviceName; }
 
-    PhotonMaps readPhotonMaps() override;
-    std::vector<HitPoint> readHitPoints() override;
-    Image readFrame() override;
+    MemoryLimits memoryLimits() override;
 
     // Records a whole frame into `cmd`: its parameters, the stages and the barriers between them,
     // and timestamps. Call prepare() first. The frame starts with a barrier against everything
@@ -41,10 +41,10 @@ public:
     void recordFrame(VkCommandBuffer cmd, const FrameParams& params);
 
     // After recordFrame() in the caller's command buffer: copies the frame's counters for the
-    // host. Once that submission has completed, frameStats() reads them and the stage timestamps
+    // host. Once that submission has completed, frameResult() reads them and the stage timestamps
     // (what runFrame() returns). One frame at a time: there is one copy and one query pool.
     void recordStatsReadback(VkCommandBuffer cmd);
-    FrameStats frameStats(const FrameParams& params);
+    FrameResult frameResult();
 
     // The running mean: width × height vec4 of linear radiance, row by row from the top.
     VkBuffer accumulationBuffer() const { return buffers_[BINDING_ACCUMULATION].handle(); }
@@ -56,16 +56,16 @@ public:
     const Context& context() const { return *context_; }
 
 protected:
-    void uploadScene(const Scene& scene) override;
-    void allocate(const PhotonBudget& budget, std::uint32_t width, std::uint32_t height) override;
-    FrameStats runFrame(const FrameParams& params) override;
-    Image readAccumulation() override;
+    void adjustPlan(BufferPlan& plan, const PhotonBudget& budget) override;
+    void uploadScene(const Scene& scene, const BufferPlan& plan) override;
+    void allocate(const BufferPlan& plan, const PhotonBudget& budget, std::uint32_t width, std::uint32_t height) override;
+    FrameResult runFrame(const FrameParams& params) override;
+    void readBuffer(std::uint32_t binding, std::uint64_t offset, std::uint64_t bytes, void* data) override;
 
 private:
     // (Re)creates the buffer of `binding` if its size changed and points the descriptor at it.
     void ensureBuffer(std::uint32_t binding, VkDeviceSize bytes);
-    Image readImage(std::uint32_t binding);
-    void recordBuildGrid(VkCommandBuffer cmd);
+    void recordBuildGrid(VkCommandBuffer cmd, const FrameParams& params);
 
     // Device, one-off copies, pipelines.
     std::shared_ptr<Context> context_;  // shared with a viewer, if any; outlives everything below
@@ -74,9 +74,8 @@ private:
 
     // Buffers by binding number (shared/bindings.h), device-local.
     Buffer buffers_[BINDING_COUNT];
-    BufferPlan plan_;            // their sizes and the scan's levels
-    std::uint32_t width_ = 0;    // image the frame buffers are sized for
-    std::uint32_t height_ = 0;
+    ScanPlan scan_;              // the levels of the cell-count scan, in cellStart
+    std::unique_ptr<PhotonSort> sort_;  // the deterministic build's, made on first use
 
     // The frame runFrame() submits.
     struct Frame {
@@ -88,7 +87,6 @@ private:
     } frame_;
     bool cellCountsDirty_ = true;  // a new cell-count buffer must be zeroed once; after that the
                                    // scatter leaves it at zero every frame
-    std::uint32_t stored_[MAP_COUNT] = {};  // photons in each map after the last frame (up to capacity)
 };
 
 }  // namespace photon::vk

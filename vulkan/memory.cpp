@@ -10,7 +10,6 @@
 #include "core/error.h"
 
 namespace photon::vk {
-namespace {
 
 std::uint32_t findMemoryType(const Context& context, std::uint32_t allowedTypes, MemoryUse use) {
     VkMemoryPropertyFlags required = use == MemoryUse::Device
@@ -25,10 +24,8 @@ std::uint32_t findMemoryType(const Context& context, std::uint32_t allowedTypes,
             }
         }
     }
-    throw RuntimeError("no Vulkan memory type fits a buffer");
+    throw RuntimeError("no Vulkan memory type fits a buffer or image");
 }
-
-}  // namespace
 
 void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags srcStages, VkAccessFlags srcAccess,
                    VkPipelineStageFlags dstStages, VkAccessFlags dstAccess) {

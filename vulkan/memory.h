@@ -18,6 +18,9 @@ enum class MemoryUse {
     Readback,  // host-visible and coherent, cached where possible, read by the host
 };
 
+// The memory type for a resource whose requirements allow `allowedTypes`, for `use`.
+std::uint32_t findMemoryType(const Context& context, std::uint32_t allowedTypes, MemoryUse use);
+
 // A VkBuffer and its VkDeviceMemory, freed together. Move-only.
 class Buffer {
 public:

@@ -53,4 +53,16 @@ SingleDescriptorSet allocateSingleSet(VkDevice device, VkDescriptorSetLayout lay
     return out;
 }
 
+void writeBufferDescriptor(VkDevice device, VkDescriptorSet set, std::uint32_t binding, VkDescriptorType type,
+                           VkBuffer buffer, VkDeviceSize size) {
+    VkDescriptorBufferInfo info{buffer, 0, size};
+    VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    write.dstSet = set;
+    write.dstBinding = binding;
+    write.descriptorCount = 1;
+    write.descriptorType = type;
+    write.pBufferInfo = &info;
+    vkUpdateDescriptorSets(device, 1, &write, 0, nullptr);
+}
+
 }  // namespace photon::vk

@@ -28,4 +28,8 @@ struct SingleDescriptorSet {
 };
 SingleDescriptorSet allocateSingleSet(VkDevice device, VkDescriptorSetLayout layout, std::uint32_t storageBuffers);
 
+// Points binding `binding` of `set` at the first `size` bytes of `buffer`. Only between frames.
+void writeBufferDescriptor(VkDevice device, VkDescriptorSet set, std::uint32_t binding, VkDescriptorType type,
+                           VkBuffer buffer, VkDeviceSize size);
+
 }  // namespace photon::vk

@@ -4,9 +4,12 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "check.h"
+#include "objects.h"
 #include "glsl/dispatch.h"
 #include "shared/bindings.h"
 
@@ -133,14 +136,13 @@ Pipelines::Pipelines(const Context& context) : context_(context) {
     }
 }
 
-VkPipeline Pipelines::create(Shader shader, const VkSpecializationInfo* specialization,
-                             VkPipelineShaderStageCreateFlags flags) {
-    ShaderCode code = shaderCode(shader);
+VkPipeline createComputePipeline(VkDevice device, VkPipelineLayout layout, const std::uint32_t* words, std::size_t bytes,
+                                 const VkSpecializationInfo* specialization, VkPipelineShaderStageCreateFlags flags) {
     VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-    moduleInfo.codeSize = code.bytes;
-    moduleInfo.pCode = code.words;
+    moduleInfo.codeSize = bytes;
+    moduleInfo.pCode = words;
     VkShaderModule module = VK_NULL_HANDLE;
-    VK_CHECK(vkCreateShaderModule(context_.device, &moduleInfo, nullptr, &module));
+    VK_CHECK(vkCreateShaderModule(device, &moduleInfo, nullptr, &module));
     VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
     info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
     info.stage.flags = flags;
@@ -150,14 +152,24 @@ VkPipeline Pipelines::create(Shader shader, const VkSpecializationInfo* speciali
     info.stage.pSpecializationInfo = specialization;
     info.layout = layout;
     VkPipeline created = VK_NULL_HANDLE;
-    VkResult result = vkCreateComputePipelines(context_.device, VK_NULL_HANDLE, 1, &info, nullptr, &created);
-    vkDestroyShaderModule(context_.device, module, nullptr);
+    VkResult result = vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &created);
+    vkDestroyShaderModule(device, module, nullptr);
     VK_CHECK(result);
     return created;
 }
 
+VkPipeline Pipelines::create(Shader shader, const VkSpecializationInfo* specialization,
+                             VkPipelineShaderStageCreateFlags flags) {
+    ShaderCode code = shaderCode(shader);
+    return createComputePipeline(context_.device, layout, code.words, code.bytes, specialization, flags);
+}
+
 VkPipeline Pipelines::gather(std::uint32_t estimator, std::uint32_t globalMode) {
-    std::uint32_t variant = (estimator & 3u) * 2u + (globalMode & 1u);
+    if (estimator >= ESTIMATOR_COUNT || globalMode >= GLOBAL_MODE_COUNT) {
+        throw std::logic_error("Vulkan gather: unknown estimator " + std::to_string(estimator) + " or global mode " +
+                               std::to_string(globalMode));
+    }
+    std::uint32_t variant = estimator * GLOBAL_MODE_COUNT + globalMode;
     if (gatherVariants_[variant] == VK_NULL_HANDLE) {
         std::uint32_t constants[2] = {estimator, globalMode};
         VkSpecializationMapEntry entries[2] = {{1, 0, sizeof(std::uint32_t)}, {2, sizeof(std::uint32_t), sizeof(std::uint32_t)}};
@@ -181,14 +193,8 @@ Pipelines::~Pipelines() {
 }
 
 void Pipelines::writeDescriptor(std::uint32_t binding, VkBuffer buffer, VkDeviceSize size) {
-    VkDescriptorBufferInfo info{buffer, 0, size};
-    VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    write.dstSet = set;
-    write.dstBinding = binding;
-    write.descriptorCount = 1;
-    write.descriptorType = binding == BINDING_PARAMS ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    write.pBufferInfo = &info;
-    vkUpdateDescriptorSets(context_.device, 1, &write, 0, nullptr);
+    VkDescriptorType type = binding == BINDING_PARAMS ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    writeBufferDescriptor(context_.device, set, binding, type, buffer, size);
 }
 
 }  // namespace photon::vk

@@ -2,11 +2,13 @@
 // holding every buffer of shared/bindings.h, and a few words of push constants. Built once.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
 #include <vulkan/vulkan.h>
 
 #include "context.h"
+#include "shared/constants.h"
 
 namespace photon::vk {
 
@@ -32,6 +34,11 @@ struct GroupCount {
     std::uint32_t y = 0;
 };
 GroupCount groupsFor(std::uint64_t items, std::uint32_t groupSize);
+
+// A compute pipeline from SPIR-V words (`bytes` long) over `layout`.
+VkPipeline createComputePipeline(VkDevice device, VkPipelineLayout layout, const std::uint32_t* words, std::size_t bytes,
+                                 const VkSpecializationInfo* specialization = nullptr,
+                                 VkPipelineShaderStageCreateFlags flags = 0);
 
 // Binds `shader` and dispatches `items` invocations (rounded up to whole workgroups).
 void dispatch(VkCommandBuffer cmd, const class Pipelines& pipelines, Shader shader, std::uint64_t items,
@@ -62,7 +69,7 @@ private:
     VkPipeline create(Shader shader, const VkSpecializationInfo* specialization, VkPipelineShaderStageCreateFlags flags);
 
     const Context& context_;
-    static constexpr std::uint32_t kGatherVariants = 8;  // 4 estimators × 2 global modes
+    static constexpr std::uint32_t kGatherVariants = ESTIMATOR_COUNT * GLOBAL_MODE_COUNT;
     VkPipeline gatherVariants_[kGatherVariants] = {};
 };
 

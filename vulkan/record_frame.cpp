@@ -41,7 +41,7 @@ void VulkanBackend::recordFrame(VkCommandBuffer cmd, const FrameParams& params) 
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
     timestamp(1);
 
-    recordBuildGrid(cmd);
+    recordBuildGrid(cmd, params);
     timestamp(2);
 
     // tracePixels: one invocation per pixel, in tiles.
@@ -70,7 +70,7 @@ void VulkanBackend::recordFrame(VkCommandBuffer cmd, const FrameParams& params) 
 
 // buildGrid: a counting sort of each map's photons by cell. The count and scatter passes run over
 // the photons actually stored, through group counts that gridArgs writes from the counters.
-void VulkanBackend::recordBuildGrid(VkCommandBuffer cmd) {
+void VulkanBackend::recordBuildGrid(VkCommandBuffer cmd, const FrameParams& params) {
     const Pipelines& p = pipelines_;
     VkBuffer counters = buffers_[BINDING_COUNTERS].handle();
     auto dispatchPerMap = [&](Shader shader) {
@@ -93,13 +93,21 @@ void VulkanBackend::recordBuildGrid(VkCommandBuffer cmd) {
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
 
-    recordScan(cmd, p, plan_.scan);
+    recordScan(cmd, p, scan_);
     // The cell starts are written, and the scan has read the counts, before the scatter reads the
     // starts and counts the counts back down.
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
 
-    dispatchPerMap(kGridScatter);
+    if ((params.flags & FLAG_DETERMINISTIC) != 0u) {
+        // Sorting (cell key, id) instead of the scatter: each cell's photons in canonical order.
+        for (std::uint32_t map = 0; map < MAP_COUNT; ++map) {
+            sort_->record(cmd, params, map, buffers_[BINDING_CELL_COUNTS].handle());
+        }
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layout, 0, 1, &p.set, 0, nullptr);
+    } else {
+        dispatchPerMap(kGridScatter);
+    }
     // The photon maps are complete before gather reads them.
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);

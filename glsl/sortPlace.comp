@@ -1,0 +1,17 @@
+#version 460
+// Deterministic buildGrid, last step (per map): the photons in sorted order, which is cell order
+// with each cell's photons by id.
+#extension GL_GOOGLE_include_directive : require
+#include "shared/bindings.h"
+#include "glsl/dispatch.h"
+#include "glsl/sort.h"
+
+layout(local_size_x = GROUP_SIZE) in;
+
+void main() {
+    uint i = invocationIndex();
+    if (i < sortState[SORT_STATE_COUNT]) {
+        uint offset = params.grids[push.map].photonOffset;
+        sortedPhotons[offset + i] = photons[offset + sortValues[push.source + i]];
+    }
+}

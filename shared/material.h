@@ -1,0 +1,70 @@
+// What each material does, answered in one place (in the manner of pbrt-v4's BxDFFlags). Every
+// stage and the host ask materialFlags() instead of comparing material types:
+//   photons are stored where reflection is not a delta distribution, and density estimates read them;
+//   eye paths end there too (a mirror coat may continue them instead);
+//   mirrors and glass are caustic casters: bounded ones are the targets of the caustic pass;
+//   a mirror coat over a stored base (reflective) makes caustic paths but is not a target;
+//   emitters radiate and absorb.
+#ifndef PHOTON_SHARED_MATERIAL_H
+#define PHOTON_SHARED_MATERIAL_H
+
+#include "layout.h"
+#include "math.h"
+
+PH_NAMESPACE_BEGIN
+
+PH_CONST uint SURFACE_STORES_PHOTONS = 1u;   // a non-delta lobe: photons are stored, estimates read them
+PH_CONST uint SURFACE_ENDS_EYE_PATHS = 2u;   // eye paths end here with direct light and photon estimates
+PH_CONST uint SURFACE_CAUSTIC_CASTER = 4u;   // delta lobes only (mirror, glass)
+PH_CONST uint SURFACE_SPECULAR_COAT = 8u;    // a delta lobe over a stored base (reflective)
+PH_CONST uint SURFACE_EMITS = 16u;           // the visible surface of an area light
+PH_CONST uint SURFACE_LAMBERTIAN = 32u;      // what is stored reflects as albedo/π: estimates take it
+                                             // out of their sums
+
+PH_FN uint materialFlags(PH_IN(Material) m) {
+    if (m.type == MATERIAL_DIFFUSE) {
+        return SURFACE_STORES_PHOTONS | SURFACE_ENDS_EYE_PATHS | SURFACE_LAMBERTIAN;
+    }
+    if (m.type == MATERIAL_GLOSSY) {
+        return SURFACE_STORES_PHOTONS | SURFACE_ENDS_EYE_PATHS;
+    }
+    if (m.type == MATERIAL_REFLECTIVE) {
+        return SURFACE_STORES_PHOTONS | SURFACE_ENDS_EYE_PATHS | SURFACE_SPECULAR_COAT | SURFACE_LAMBERTIAN;
+    }
+    if (m.type == MATERIAL_MIRROR || m.type == MATERIAL_GLASS) {
+        return SURFACE_CAUSTIC_CASTER;
+    }
+    if (m.type == MATERIAL_EMITTER) {
+        return SURFACE_EMITS;
+    }
+    return 0u;
+}
+
+PH_FN bool surfaceIs(PH_IN(Material) m, uint flag) { return (materialFlags(m) & flag) != 0u; }
+
+// Whether a photon path that meets this surface can become a caustic one (light, specular, diffuse).
+PH_FN bool makesCausticPaths(PH_IN(Material) m) {
+    return surfaceIs(m, SURFACE_CAUSTIC_CASTER | SURFACE_SPECULAR_COAT);
+}
+
+// Probability that a reflective material's mirror coat, not its Lambertian base, takes a ray.
+PH_FN float mirrorCoatProbability(PH_IN(Material) m) {
+    float d = maxComponent(m.albedo);
+    float s = maxComponent(m.specular);
+    return (d + s) > 0.0f ? s / (d + s) : 0.0f;
+}
+
+// The part of a material that density estimates and shadow rays see: without its mirror coat,
+// a delta lobe that only traced rays can follow.
+PH_FN Material storedPart(PH_IN(Material) m) {
+    Material d = m;
+    if (surfaceIs(m, SURFACE_SPECULAR_COAT)) {
+        d.type = MATERIAL_DIFFUSE;
+        d.specular = vec3(0.0f);
+    }
+    return d;
+}
+
+PH_NAMESPACE_END
+
+#endif
