@@ -22,9 +22,20 @@ std::vector<std::string> compiledBackends() {
     return names;
 }
 
+namespace {
+
+std::unique_ptr<Backend> cpuBackend(const BackendOptions& options) {
+    if (!options.device.empty()) {
+        throw InputError("--device " + options.device + ": the CPU backend has no devices to choose from");
+    }
+    return createCpuBackend();
+}
+
+}  // namespace
+
 std::unique_ptr<Backend> createBackend(const std::string& kind, [[maybe_unused]] const BackendOptions& options) {
     if (kind == "cpu") {
-        return createCpuBackend();
+        return cpuBackend(options);
     }
     if (kind == "cuda") {
 #ifdef PHOTON_HAVE_CUDA
@@ -47,11 +58,12 @@ std::unique_ptr<Backend> createBackend(const std::string& kind, [[maybe_unused]]
         }
 #endif
 #ifdef PHOTON_HAVE_VULKAN
-        if (vulkanDeviceCount() > 0) {
+        // A real GPU; lavapipe (software) only when asked for: the CPU backend is faster.
+        if (vulkanHardwareDeviceCount() > 0) {
             return createVulkanBackend(options);
         }
 #endif
-        return createCpuBackend();
+        return cpuBackend(options);
     }
     throw InputError("unknown backend '" + kind + "' (expected auto|cpu|cuda|vulkan)");
 }

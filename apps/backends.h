@@ -1,5 +1,5 @@
-// Choosing a backend by name. "auto" takes CUDA if a CUDA device exists, else Vulkan if a Vulkan
-// device exists, else the CPU.
+// Choosing a backend by name. "auto" takes CUDA if a CUDA device exists, else Vulkan on a hardware
+// GPU, else the CPU (lavapipe, software Vulkan, is slower than the CPU backend: only when asked for).
 #pragma once
 
 #include <memory>

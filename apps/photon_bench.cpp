@@ -20,6 +20,8 @@
 #include "apps/program.h"
 #include "apps/render_options.h"
 #include "core/error.h"
+#include "core/output_file.h"
+#include "core/setting_specs.h"
 #include "core/scene_loader.h"
 #ifdef PHOTON_HAVE_CUDA
 #include "cuda/cuda_backend.h"
@@ -171,10 +173,10 @@ void writeOutputs(const std::vector<Row>& rows, const std::string& jsonPath, con
         for (const Row& r : rows) {
             j["rows"].push_back(toJson(r));
         }
-        std::ofstream(jsonPath) << j.dump(2) << "\n";
+        writeOutputFile(jsonPath, j.dump(2) + "\n", "JSON table");
     }
     if (!csvPath.empty()) {
-        std::ofstream csv(csvPath);
+        std::ostringstream csv;
         csv << "scene,backend,device,width,height,photons,variant,tracePhotons,buildGrid,tracePixels,gather,accumulate,"
                "frame_ms,stored_photons,first_image_ms\n";
         for (const Row& r : rows) {
@@ -183,6 +185,7 @@ void writeOutputs(const std::vector<Row>& rows, const std::string& jsonPath, con
                 << r.median.tracePixels << "," << r.median.gather << "," << r.median.accumulate << "," << r.frameMs
                 << "," << r.storedPhotons << "," << r.firstImageMs << "\n";
         }
+        writeOutputFile(csvPath, csv.str(), "CSV table");
     }
 }
 
@@ -264,15 +267,42 @@ int run(int argc, char** argv) {
     app.add_option("--device", options.device, "GPU to use");
     app.add_option("--json", jsonPath, "Write the rows as JSON");
     app.add_option("--csv", csvPath, "Write the rows as CSV");
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
-        int code = app.exit(e);
-        return code == 0 ? 0 : 2;
+    if (int code = parseCommandLine(app, argc, argv); code >= 0) {
+        return code;
     }
-    Estimator est;
-    if (!parse(estimator, est)) {
-        throw InputError("--estimator: unknown value '" + estimator + "'");
+    RenderSettings checked;
+    setSetting(checked, *findSetting("estimator"), estimator, "--estimator");
+    Estimator est = checked.estimator;
+    // Every list value is checked now, with the scene files' ranges, before anything is measured.
+    auto photonCounts = [&](const std::string& list, const char* flag) {
+        std::vector<std::uint32_t> counts;
+        for (const std::string& n : split(list)) {
+            RenderSettings s;
+            setSetting(s, *findSetting("photons"), n, flag);
+            counts.push_back(s.photons);
+        }
+        if (counts.empty()) {
+            throw InputError(std::string(flag) + ": expected a comma-separated list of photon counts");
+        }
+        return counts;
+    };
+    std::vector<std::uint32_t> photonList = photonCounts(photons, "--photons");
+    std::vector<std::uint32_t> gridSweepList;
+    if (!gridSweep.empty()) {
+        gridSweepList = photonCounts(gridSweep, "--grid-sweep");
+    }
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> resolutionList;
+    for (const std::string& r : split(resolutions)) {
+        resolutionList.push_back(parseResolution(r));
+    }
+    if (resolutionList.empty()) {
+        throw InputError("--resolutions: expected a comma-separated list of WIDTHxHEIGHT");
+    }
+    if (!jsonPath.empty()) {
+        checkOutputPath(jsonPath, "JSON table");
+    }
+    if (!csvPath.empty()) {
+        checkOutputPath(csvPath, "CSV table");
     }
 
     // What to measure: settings and a label, per scene.
@@ -286,21 +316,22 @@ int run(int argc, char** argv) {
         base.estimator = est;
         base.frames = 1;
         std::vector<Case> cases;
-        if (!gridSweep.empty()) {
-            for (const std::string& n : split(gridSweep)) {
+        if (!gridSweepList.empty()) {
+            for (std::uint32_t n : gridSweepList) {
                 RenderSettings s = base;
                 s.width = 320;
                 s.height = 240;
-                s.photons = static_cast<std::uint32_t>(std::stoul(n));
+                s.photons = n;
                 cases.push_back({s, "grid"});
             }
             return cases;
         }
-        for (const std::string& res : split(resolutions)) {
-            for (const std::string& n : split(photons)) {
+        for (auto [width, height] : resolutionList) {
+            for (std::uint32_t n : photonList) {
                 RenderSettings s = base;
-                std::tie(s.width, s.height) = parseResolution(res);
-                s.photons = static_cast<std::uint32_t>(std::stoul(n));
+                s.width = width;
+                s.height = height;
+                s.photons = n;
                 cases.push_back({s, "", launchSweep});
             }
         }

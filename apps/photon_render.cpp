@@ -1,8 +1,7 @@
 // photon-render: renders a scene file (or the built-in Cornell box) to an image, headless.
 //
 //   photon-render [scene.json] --backend auto|cpu|cuda|vulkan --width W --height H --photons N
-//                 --frames F --estimator cell|radius|knn|progressive --radius R --k K --seed S
-//                 --output FILE --stats FILE
+//                 --frames F | --time SECONDS --estimator ... --output FILE --stats FILE
 //
 // Exit codes: 0 success, 2 bad input (scene, options), 1 runtime failure (e.g. no such backend).
 #include <algorithm>
@@ -19,7 +18,9 @@
 #include "apps/progress.h"
 #include "apps/render_options.h"
 #include "core/error.h"
+#include "core/output_file.h"
 #include "core/scene_loader.h"
+#include "core/setting_specs.h"
 
 namespace photon {
 namespace {
@@ -91,11 +92,7 @@ void writeStats(const std::string& path, Backend& backend, const std::vector<Sta
                                     {"max_per_cell", g.maxPerCell},
                                     {"mean_per_occupied", g.meanPerOccupied}};
     }
-    std::ofstream out(path);
-    if (!out) {
-        throw RuntimeError(path + ": cannot open for writing");
-    }
-    out << j.dump(2) << "\n";
+    writeOutputFile(path, j.dump(2) + "\n", "stats");
 }
 
 int run(int argc, char** argv) {
@@ -106,26 +103,33 @@ int run(int argc, char** argv) {
     std::string statsPath;
     BackendOptions backendOptions;
     bool quiet = false;
+    double seconds = 0.0;
     RenderOptions options;
     app.add_option("scene", scenePath, "Scene file (JSON); the built-in Cornell box if omitted");
-    app.add_option("--backend", backendName, "auto|cpu|cuda|vulkan")->check(CLI::IsMember({"auto", "cpu", "cuda", "vulkan"}));
+    app.add_option("--backend", backendName, "auto|cpu|cuda|vulkan (auto: a GPU if there is one, else the CPU)")
+        ->check(CLI::IsMember({"auto", "cpu", "cuda", "vulkan"}));
     app.add_option("--device", backendOptions.device, "GPU to use: index or part of its name");
     app.add_flag("--validation", backendOptions.validation, "Vulkan: validation layer on; any message fails");
     app.add_option("--output,-o", output, "Image file: .png (tone-mapped), .exr or .pfm (linear)");
     app.add_option("--stats", statsPath, "Write per-stage times and photon counts as JSON");
+    app.add_option("--time", seconds, "Render frames until this many seconds have passed (at most --frames if given)")
+        ->check(CLI::Range(0.001, 1e6));
     app.add_flag("--quiet,-q", quiet, "Print nothing but errors");
     addRenderOptions(app, options);
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
-        int code = app.exit(e);
-        return code == 0 ? 0 : 2;
+    if (int code = parseCommandLine(app, argc, argv); code >= 0) {
+        return code;
     }
 
-    Scene scene = scenePath.empty() ? defaultScene() : loadSceneFile(scenePath);
+    Scene scene = app.count("scene") == 0 ? defaultScene() : loadSceneFile(scenePath);
     RenderSettings settings = scene.render;
     applyRenderOptions(app, options, settings);
-    imageFormatFor(output);  // a bad extension fails now, not after the render
+    validateSettings(settings);
+    // Outputs that cannot be written fail now, not after the render.
+    imageFormatFor(output);
+    checkOutputPath(output, "image");
+    if (!statsPath.empty()) {
+        checkOutputPath(statsPath, "stats");
+    }
 
     std::unique_ptr<Backend> backend = createBackend(backendName, backendOptions);
     backend->setScene(scene);
@@ -133,14 +137,23 @@ int run(int argc, char** argv) {
     auto start = std::chrono::steady_clock::now();
     backend->prepare();
 
+    // --time: frames until the time is spent; --frames, given with it, caps them.
+    bool timed = app.count("--time") > 0;
+    std::uint32_t maxFrames = timed && app.count("--frames") == 0 ? 0xffffffffu : settings.frames;
     std::vector<StageTimes> times;
-    ProgressBar progress(settings.frames);
-    for (std::uint32_t f = 0; f < settings.frames; ++f) {
+    ProgressBar progress(timed ? 0 : settings.frames, timed ? seconds : 0.0, !quiet);
+    double elapsed = 0.0;
+    for (std::uint32_t f = 0; f < maxFrames; ++f) {
         backend->renderFrame();
         times.push_back(backend->lastFrameStats().ms);
-        progress.update(f + 1);
+        elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        progress.update(f + 1, elapsed);
+        if (timed && elapsed >= seconds) {
+            break;
+        }
     }
     progress.finish();
+    std::uint32_t frames = static_cast<std::uint32_t>(times.size());
     Image image = backend->image();
     double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     writeImage(output, image, settings.exposure, settings.tonemap);
@@ -150,9 +163,9 @@ int run(int argc, char** argv) {
     if (!quiet) {
         const FrameStats& last = backend->lastFrameStats();
         std::fprintf(stderr, "%s on %s: %ux%u, %u frame%s in %.2f s (%.1f ms/frame), photons stored %u global, %u caustic -> %s\n",
-                     backend->name().c_str(), backend->deviceName().c_str(), settings.width, settings.height,
-                     settings.frames, settings.frames == 1 ? "" : "s", wall, 1000.0 * wall / settings.frames,
-                     last.stored[MAP_GLOBAL], last.stored[MAP_CAUSTIC], output.c_str());
+                     backend->name().c_str(), backend->deviceName().c_str(), settings.width, settings.height, frames,
+                     frames == 1 ? "" : "s", wall, 1000.0 * wall / frames, last.stored[MAP_GLOBAL],
+                     last.stored[MAP_CAUSTIC], output.c_str());
     }
     return 0;
 }

@@ -18,7 +18,9 @@
 #include "apps/program.h"
 #include "core/error.h"
 #include "core/image.h"
+#include "core/output_file.h"
 #include "core/scene_loader.h"
+#include "core/setting_specs.h"
 #include "viewer/viewer.h"
 
 namespace photon {
@@ -60,22 +62,21 @@ int run(int argc, char** argv) {
     // --frames makes a run scripted; --view also takes the viewer's own "dots".
     app.get_option("--frames")->description("Render this many frames, then exit (scripted use)");
     app.get_option("--view")->description("What to show: final|direct|global|caustic|dots|grid");
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
-        int code = app.exit(e);
-        return code == 0 ? 0 : 2;
+    if (int code = parseCommandLine(app, argc, argv); code >= 0) {
+        return code;
     }
 
-    if (render.view == "dots") {
+    std::string& viewName = render.values["--view"];
+    if (viewName == "dots") {
         o.view = viewer::DisplayView::Dots;
-        render.view = "final";
-    } else if (View v; !render.view.empty() && !parse(render.view, v)) {
-        throw InputError("--view: unknown value '" + render.view + "' (expected final|direct|global|caustic|dots|grid)");
+        viewName = "final";
+    } else if (View v; !viewName.empty() && !parse(viewName, v)) {
+        throw InputError("--view: unknown value '" + viewName + "' (expected final|direct|global|caustic|dots|grid)");
     }
-    o.scene = o.scenePath.empty() ? defaultScene() : loadSceneFile(o.scenePath);
+    o.scene = app.count("scene") == 0 ? defaultScene() : loadSceneFile(o.scenePath);
     o.settings = o.scene.render;
     applyRenderOptions(app, render, o.settings);
+    validateSettings(o.settings);
     if (o.view != viewer::DisplayView::Dots) {
         const viewer::DisplayView views[] = {viewer::DisplayView::Final, viewer::DisplayView::Direct,
                                              viewer::DisplayView::Global, viewer::DisplayView::Caustic,
@@ -99,6 +100,12 @@ int run(int argc, char** argv) {
     }
     if (!o.screenshot.empty() && imageFormatFor(o.screenshot) != ImageFormat::Png) {
         throw InputError("--screenshot: " + o.screenshot + ": screenshots are PNG files");
+    }
+    if (!o.screenshot.empty()) {
+        checkOutputPath(o.screenshot, "screenshot");
+    }
+    if (!o.statsPath.empty()) {
+        checkOutputPath(o.statsPath, "stats");
     }
 
     viewer::Viewer view(o);

@@ -1,35 +1,68 @@
 #include "progress.h"
 
+#include <sys/ioctl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <string>
 
 namespace photon {
+namespace {
 
-ProgressBar::ProgressBar(std::uint32_t total)
-    : total_(total), enabled_(total > 1 && isatty(STDERR_FILENO)), start_(std::chrono::steady_clock::now()),
-      lastDraw_(start_) {}
+int terminalColumns() {
+    winsize size{};
+    if (ioctl(STDERR_FILENO, TIOCGWINSZ, &size) == 0 && size.ws_col > 0) {
+        return size.ws_col;
+    }
+    return 80;
+}
 
-void ProgressBar::update(std::uint32_t done) {
+}  // namespace
+
+ProgressBar::ProgressBar(std::uint32_t totalFrames, double totalSeconds, bool enabled)
+    : totalFrames_(totalFrames),
+      totalSeconds_(totalSeconds),
+      enabled_(enabled && (totalFrames > 1 || totalSeconds > 0.0) && isatty(STDERR_FILENO)),
+      lastDraw_(std::chrono::steady_clock::now()) {}
+
+void ProgressBar::update(std::uint32_t frames, double seconds) {
     if (!enabled_) {
         return;
     }
     auto now = std::chrono::steady_clock::now();
-    if (done < total_ && now - lastDraw_ < std::chrono::milliseconds(100)) {
+    bool last = totalSeconds_ > 0.0 ? seconds >= totalSeconds_ : frames >= totalFrames_;
+    if (!last && now - lastDraw_ < std::chrono::milliseconds(100)) {
         return;
     }
     lastDraw_ = now;
-    constexpr int kWidth = 30;
-    int filled = int(std::uint64_t(done) * kWidth / total_);
-    double seconds = std::chrono::duration<double>(now - start_).count();
-    double fps = seconds > 0.0 ? done / seconds : 0.0;
-    std::fprintf(stderr, "\r[%.*s%*s] %u/%u frames, %.1f frames/s ", filled, "##############################",
-                 kWidth - filled, "", done, total_, fps);
+    double fraction = totalSeconds_ > 0.0 ? seconds / totalSeconds_ : double(frames) / double(totalFrames_);
+    fraction = std::clamp(fraction, 0.0, 1.0);
+    char text[128];
+    double fps = seconds > 0.0 ? frames / seconds : 0.0;
+    if (totalSeconds_ > 0.0) {
+        std::snprintf(text, sizeof text, " %u frames, %.1f/%.1f s, %.1f frames/s", frames, seconds, totalSeconds_, fps);
+    } else {
+        std::snprintf(text, sizeof text, " %u/%u frames, %.1f frames/s", frames, totalFrames_, fps);
+    }
+    // The line is one column short of the terminal's width, so that it never wraps.
+    int width = terminalColumns() - 1;
+    std::string line(text);
+    int bar = std::min(30, width - int(line.size()) - 2);
+    if (bar >= 5) {
+        int filled = int(fraction * bar + 0.5);
+        line = "[" + std::string(filled, '#') + std::string(bar - filled, ' ') + "]" + line;
+    }
+    if (int(line.size()) > width) {
+        line.resize(std::max(0, width));
+    }
+    std::fprintf(stderr, "\r%s\x1b[K", line.c_str());
     std::fflush(stderr);
+    drawn_ = true;
 }
 
 void ProgressBar::finish() {
-    if (enabled_) {
+    if (enabled_ && drawn_) {
         std::fprintf(stderr, "\n");
     }
 }

@@ -1,7 +1,9 @@
-// Command-line options that override a scene's render settings, shared by photon-render and
-// photon-view. Only the options given on the command line override the scene file.
+// The render settings on the command line, shared by photon-render and photon-view: one option per
+// setting of core/setting_specs.h, parsed and checked there. Only the options given on the command
+// line override the scene file's settings.
 #pragma once
 
+#include <map>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -11,40 +13,17 @@
 namespace photon {
 
 struct RenderOptions {
-    std::uint32_t width = 0;
-    std::uint32_t height = 0;
-    std::uint32_t photons = 0;
-    std::uint32_t frames = 0;
-    std::string estimator;
-    std::string kernel;
-    float radius = 0.0f;
-    float causticRadius = 0.0f;
-    std::uint32_t k = 0;
-    float alpha = 0.0f;
-    std::uint32_t seed = 0;
-    bool pixelCenter = false;
-    std::string global;
-    std::uint32_t gatherRays = 0;
-    std::uint32_t lightSamples = 0;
-    std::uint32_t maxEyeDepth = 0;
-    std::uint32_t maxPhotonDepth = 0;
-    float causticFraction = 0.0f;
-    std::string grid;
-    std::uint32_t gridResolution = 0;
-    float cellSize = 0.0f;
-    std::uint32_t gatherBudget = 0;
-    std::string view;
-    float exposure = 0.0f;
-    std::string tonemap;
+    std::map<std::string, std::string> values;  // flag → text as given
+    std::map<std::string, bool> flags;          // flag → given (settings without a value)
 };
 
 void addRenderOptions(CLI::App& app, RenderOptions& options);
 
-// Applies the options that were given; throws InputError for a bad enumeration value.
+// Applies the options that were given; throws InputError "--flag: reason" for a bad value.
 void applyRenderOptions(const CLI::App& app, const RenderOptions& options, RenderSettings& settings);
 
-// Sets one setting by its scene-file name ("cell_size", "gather_budget", "estimator", ...), for
-// photon-bench's --vary. Throws InputError for an unknown name or value.
+// Sets one setting by its scene-file name ("cell_size", "estimator", ...), for photon-bench's
+// --vary. Throws InputError for an unknown name or a bad value.
 void applySetting(RenderSettings& settings, const std::string& key, const std::string& value);
 
 }  // namespace photon

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "error.h"
+#include "setting_specs.h"
 
 namespace photon {
 
@@ -52,15 +53,14 @@ void Backend::setCamera(const CameraDesc& camera) {
 void Backend::resetAccumulation() { accumulated_ = 0; }
 
 void Backend::prepare() {
-    if (settings_.width == 0 || settings_.height == 0) {
-        throw InputError("image size must be at least 1×1");
+    if (!sceneDirty_ && !allocationDirty_) {
+        return;
     }
     if (scene_.lights.empty()) {
         throw InputError("the scene has no lights");
     }
-    if (!sceneDirty_ && !allocationDirty_) {
-        return;
-    }
+    validateSettings(settings_);
+    validateForScene(settings_, scene_);
     PhotonBudget budget = planPhotons(scene_, settings_);
     for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
         budget.capacity[m] = std::max(budget.capacity[m], grownCapacity_[m]);
@@ -68,6 +68,12 @@ void Backend::prepare() {
     BufferPlan plan = planBuffers(scene_, budget, settings_.width, settings_.height);
     adjustPlan(plan, budget);
     checkMemory(plan, memoryLimits(), settings_.width, settings_.height);
+    std::uint64_t hostImage = std::uint64_t(settings_.width) * settings_.height * kHostBytesPerPixel;
+    if (name() != "cpu" && hostImage > availableHostMemory()) {
+        throw InputError("the image needs " + formatMiB(hostImage) + " of host memory at " + std::to_string(settings_.width) +
+                         "x" + std::to_string(settings_.height) + ", more than this machine has available; " +
+                         whatToLower(BUFFER_PER_PIXEL));
+    }
     if (sceneDirty_) {
         uploadScene(scene_, plan);
         sceneDirty_ = false;

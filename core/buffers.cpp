@@ -1,6 +1,10 @@
 #include "buffers.h"
 
+#include <sys/resource.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <fstream>
 #include <cstdio>
 #include <stdexcept>
 
@@ -48,6 +52,30 @@ const char* whatToLower(std::uint32_t sizeClass) {
         case BUFFER_PER_COUNTER: return "nothing can be lowered";
     }
     throw std::logic_error("unknown buffer size class");
+}
+
+std::uint64_t availableHostMemory() {
+    std::uint64_t page = std::uint64_t(sysconf(_SC_PAGESIZE));
+    std::uint64_t available = std::uint64_t(sysconf(_SC_PHYS_PAGES)) * page;
+    std::ifstream meminfo("/proc/meminfo");
+    for (std::string key; meminfo >> key;) {
+        std::uint64_t kib = 0;
+        meminfo >> kib;
+        if (key == "MemAvailable:") {
+            available = std::min(available, kib * 1024);
+            break;
+        }
+        meminfo.ignore(256, '\n');
+    }
+    rlimit limit{};
+    if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY) {
+        std::uint64_t mapped = 0;
+        std::ifstream statm("/proc/self/statm");
+        statm >> mapped;
+        mapped *= page;
+        available = std::min<std::uint64_t>(available, limit.rlim_cur > mapped ? limit.rlim_cur - mapped : 0);
+    }
+    return available;
 }
 
 std::string formatMiB(std::uint64_t bytes) {

@@ -36,6 +36,13 @@ struct MemoryLimits {
 // does not fit.
 void checkMemory(const BufferPlan& plan, const MemoryLimits& limits, std::uint32_t width, std::uint32_t height);
 
+// Host memory this process may still take: what the OS reports available, or less under an
+// address-space limit (ulimit -v).
+std::uint64_t availableHostMemory();
+
+// Host memory an image takes besides the backend's buffers: its readback and its encoding.
+inline constexpr std::uint64_t kHostBytesPerPixel = 24;
+
 // The setting that shrinks buffers of a BUFFER_PER_* class, for messages.
 const char* whatToLower(std::uint32_t sizeClass);
 

@@ -1,5 +1,5 @@
 // The two kinds of failure the programs report: bad input from the user (exit code 2) and a
-// runtime failure such as a backend that is not available (exit code 1).
+// runtime failure such as a backend that is not available (exit code 1). Messages are one line.
 #pragma once
 
 #include <stdexcept>
@@ -16,5 +16,9 @@ struct InputError : std::runtime_error {
 struct RuntimeError : std::runtime_error {
     explicit RuntimeError(const std::string& what) : std::runtime_error(what) {}
 };
+
+// The text as one line a terminal shows as it is: UTF-8 passes, control characters (C0, DEL,
+// C1) and bytes that are not UTF-8 become \xNN escapes.
+std::string printable(const std::string& text);
 
 }  // namespace photon

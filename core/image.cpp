@@ -11,6 +11,7 @@
 #include <tinyexr.h>
 
 #include "error.h"
+#include "output_file.h"
 #include "shared/tonemap.h"
 
 namespace photon {
@@ -26,7 +27,19 @@ std::string lowerExtension(const std::string& path) {
     return ext;
 }
 
-void writePng(const std::string& path, const Image& image, float exposure, Tonemap curve) {
+void appendBytes(void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data), std::size_t(size));
+}
+
+std::string encodeRgb8Png(const unsigned char* rgb, std::uint32_t width, std::uint32_t height) {
+    std::string png;
+    if (!stbi_write_png_to_func(appendBytes, &png, int(width), int(height), 3, rgb, int(width) * 3)) {
+        throw RuntimeError("cannot encode the PNG image");
+    }
+    return png;
+}
+
+std::string encodePng(const Image& image, float exposure, Tonemap curve) {
     std::vector<unsigned char> bytes(std::size_t(image.width) * image.height * 3);
     float scale = std::exp2(exposure);
     for (std::size_t i = 0; i < image.pixels.size(); ++i) {
@@ -35,34 +48,55 @@ void writePng(const std::string& path, const Image& image, float exposure, Tonem
             bytes[3 * i + k] = static_cast<unsigned char>(std::lround(c[k] * 255.0f));
         }
     }
-    int stride = int(image.width) * 3;
-    if (!stbi_write_png(path.c_str(), int(image.width), int(image.height), 3, bytes.data(), stride)) {
-        throw RuntimeError(path + ": cannot write PNG");
-    }
+    return encodeRgb8Png(bytes.data(), image.width, image.height);
 }
 
-void writeExr(const std::string& path, const Image& image) {
-    std::vector<float> rgb(std::size_t(image.width) * image.height * 3);
-    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
-        for (int k = 0; k < 3; ++k) {
-            rgb[3 * i + k] = image.pixels[i][k];
+// OpenEXR, 32-bit float RGB, ZIP-compressed (as tinyexr's SaveEXR, but into memory).
+std::string encodeExr(const Image& image) {
+    std::size_t n = image.pixels.size();
+    std::vector<float> channels[3];  // B, G, R: the order EXR viewers expect
+    for (int c = 0; c < 3; ++c) {
+        channels[c].resize(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            channels[c][i] = image.pixels[i][2 - c];
         }
     }
+    float* planes[3] = {channels[0].data(), channels[1].data(), channels[2].data()};
+    EXRImage exr;
+    InitEXRImage(&exr);
+    exr.num_channels = 3;
+    exr.images = reinterpret_cast<unsigned char**>(planes);
+    exr.width = int(image.width);
+    exr.height = int(image.height);
+    EXRHeader header;
+    InitEXRHeader(&header);
+    header.compression_type = image.width < 16 && image.height < 16 ? TINYEXR_COMPRESSIONTYPE_NONE : TINYEXR_COMPRESSIONTYPE_ZIP;
+    EXRChannelInfo info[3] = {};
+    const char* names[3] = {"B", "G", "R"};
+    int types[3] = {TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT};
+    for (int c = 0; c < 3; ++c) {
+        std::strncpy(info[c].name, names[c], sizeof(info[c].name) - 1);
+    }
+    header.num_channels = 3;
+    header.channels = info;
+    header.pixel_types = types;
+    header.requested_pixel_types = types;
+    unsigned char* memory = nullptr;
     const char* err = nullptr;
-    if (SaveEXR(rgb.data(), int(image.width), int(image.height), 3, 0, path.c_str(), &err) != TINYEXR_SUCCESS) {
+    std::size_t size = SaveEXRImageToMemory(&exr, &header, &memory, &err);
+    if (size == 0) {
         std::string reason = err ? err : "unknown error";
         FreeEXRErrorMessage(err);
-        throw RuntimeError(path + ": cannot write EXR: " + reason);
+        throw RuntimeError("cannot encode the EXR image: " + reason);
     }
+    std::string bytes(reinterpret_cast<const char*>(memory), size);
+    std::free(memory);
+    return bytes;
 }
 
 // Portable float map: "PF", size, scale (negative: little-endian), rows bottom to top.
-void writePfm(const std::string& path, const Image& image) {
-    std::ofstream out(path, std::ios::binary);
-    if (!out) {
-        throw RuntimeError(path + ": cannot open for writing");
-    }
-    out << "PF\n" << image.width << " " << image.height << "\n-1.0\n";
+std::string encodePfm(const Image& image) {
+    std::string bytes = "PF\n" + std::to_string(image.width) + " " + std::to_string(image.height) + "\n-1.0\n";
     std::vector<float> row(std::size_t(image.width) * 3);
     for (std::uint32_t y = image.height; y-- > 0;) {
         for (std::uint32_t x = 0; x < image.width; ++x) {
@@ -70,11 +104,9 @@ void writePfm(const std::string& path, const Image& image) {
                 row[3 * x + k] = image.at(x, y)[k];
             }
         }
-        out.write(reinterpret_cast<const char*>(row.data()), std::streamsize(row.size() * sizeof(float)));
+        bytes.append(reinterpret_cast<const char*>(row.data()), row.size() * sizeof(float));
     }
-    if (!out) {
-        throw RuntimeError(path + ": write failed");
-    }
+    return bytes;
 }
 
 Image readPfm(const std::string& path) {
@@ -140,17 +172,20 @@ ImageFormat imageFormatFor(const std::string& path) {
 }
 
 void writeImage(const std::string& path, const Image& image, float exposure, Tonemap curve) {
-    switch (imageFormatFor(path)) {
-        case ImageFormat::Png:
-            writePng(path, image, exposure, curve);
-            break;
-        case ImageFormat::Exr:
-            writeExr(path, image);
-            break;
-        case ImageFormat::Pfm:
-            writePfm(path, image);
-            break;
+    if (!allFinite(image)) {
+        throw RuntimeError(path + ": the image holds values that are not finite; nothing was written");
     }
+    std::string bytes;
+    switch (imageFormatFor(path)) {
+        case ImageFormat::Png: bytes = encodePng(image, exposure, curve); break;
+        case ImageFormat::Exr: bytes = encodeExr(image); break;
+        case ImageFormat::Pfm: bytes = encodePfm(image); break;
+    }
+    writeOutputFile(path, bytes, "image");
+}
+
+void writeRgb8Png(const std::string& path, const unsigned char* rgb, std::uint32_t width, std::uint32_t height) {
+    writeOutputFile(path, encodeRgb8Png(rgb, width, height), "image");
 }
 
 Image readImage(const std::string& path) {

@@ -27,9 +27,13 @@ enum class ImageFormat { Png, Exr, Pfm };
 // The format for a file name's extension; throws InputError for anything else.
 ImageFormat imageFormatFor(const std::string& path);
 
-// Writes by extension. PNG applies exposure (stops) and the tone curve; EXR and PFM are linear.
-// Throws RuntimeError if the file cannot be written.
+// Writes by extension, whole or not at all (core/output_file.h). PNG applies exposure (stops) and
+// the tone curve; EXR and PFM are linear. Throws RuntimeError if the file cannot be written, with
+// the OS's reason.
 void writeImage(const std::string& path, const Image& image, float exposure, Tonemap tonemap);
+
+// An 8-bit RGB picture (display values) as PNG, whole or not at all.
+void writeRgb8Png(const std::string& path, const unsigned char* rgb, std::uint32_t width, std::uint32_t height);
 
 // Reads a PFM or EXR file (linear); throws InputError.
 Image readImage(const std::string& path);

@@ -1,5 +1,5 @@
-// Scene files: JSON text → Scene, built only through the Scene builder methods. A Node carries a
-// JSON value together with its JSON pointer, so that every check can say exactly where it failed.
+// Scene files: JSON text → Scene, built only through the Scene builder methods. Every value is read
+// through a JsonNode, so that every check can say exactly where it failed.
 #include "scene_loader.h"
 
 #include <algorithm>
@@ -19,299 +19,16 @@
 
 #include "embedded_scene.h"
 #include "error.h"
+#include "input_file.h"
+#include "json_node.h"
+#include "setting_specs.h"
 #include "shared/constants.h"
 
 namespace photon {
 namespace {
 
 using nlohmann::json;
-
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
-
-// Control characters escaped, so that a message stays on one line whatever the input holds.
-std::string printable(const std::string& s) {
-    std::string out;
-    for (char c : s) {
-        auto u = static_cast<unsigned char>(c);
-        if (u < 0x20 || u == 0x7f) {
-            char escaped[8];
-            std::snprintf(escaped, sizeof escaped, "\\x%02x", u);
-            out += escaped;
-        } else {
-            out += c;
-        }
-    }
-    return out;
-}
-
-std::string format(double x) {
-    std::ostringstream out;
-    out << x;
-    return out.str();
-}
-
-// One reference token of a JSON pointer (RFC 6901): '~' → "~0", '/' → "~1".
-std::string pointerToken(const std::string& key) {
-    std::string out;
-    for (char c : key) {
-        out += c == '~' ? "~0" : c == '/' ? "~1" : std::string(1, c);
-    }
-    return out;
-}
-
-// The values a setting accepts, for range checks and their messages.
-struct Interval {
-    double lo, hi;
-    bool openLo, openHi;
-
-    bool contains(double x) const { return (openLo ? x > lo : x >= lo) && (openHi ? x < hi : x <= hi); }
-
-    std::string describe() const {
-        if (lo == 0.0 && hi == kInfinity) {
-            return openLo ? "positive" : "non-negative";
-        }
-        return std::string("in ") + (openLo ? "(" : "[") + format(lo) + ", " + format(hi) + (openHi ? ")" : "]");
-    }
-};
-
-constexpr Interval kFinite{-kInfinity, kInfinity, true, true};
-constexpr Interval kPositive{0.0, kInfinity, true, true};
-constexpr Interval kNonNegative{0.0, kInfinity, false, true};
-constexpr Interval kUnit{0.0, 1.0, false, false};
-
-// A JSON value and where it is. Every accessor checks the type first, so nlohmann never throws here.
-class Node {
-public:
-    Node(const json& value, std::string pointer, const std::string& source)
-        : value_(value), pointer_(std::move(pointer)), source_(source) {}
-
-    [[noreturn]] void fail(const std::string& reason) const {
-        throw InputError(printable(source_ + ": " + (pointer_.empty() ? "/" : pointer_) + ": " + reason));
-    }
-
-    // ---- Objects -------------------------------------------------------------------------------
-
-    // Requires an object whose keys are all among `allowed`.
-    void allowKeys(std::initializer_list<const char*> allowed) const {
-        expectObject();
-        for (const auto& member : value_.items()) {
-            if (std::none_of(allowed.begin(), allowed.end(), [&](const char* k) { return member.key() == k; })) {
-                child(member.key()).fail("unknown key");
-            }
-        }
-    }
-
-    bool has(const char* key) const { return value_.is_object() && value_.contains(key); }
-
-    // A required key.
-    Node operator[](const char* key) const {
-        expectObject();
-        if (!value_.contains(key)) {
-            fail(std::string("missing required key '") + key + "'");
-        }
-        return child(key);
-    }
-
-    std::vector<std::pair<std::string, Node>> members() const {
-        expectObject();
-        std::vector<std::pair<std::string, Node>> out;
-        for (const auto& member : value_.items()) {
-            out.emplace_back(member.key(), child(member.key()));
-        }
-        return out;
-    }
-
-    // ---- Arrays --------------------------------------------------------------------------------
-
-    std::vector<Node> elements() const {
-        if (!value_.is_array()) {
-            fail(expected("an array"));
-        }
-        std::vector<Node> out;
-        for (std::size_t i = 0; i < value_.size(); ++i) {
-            out.push_back(element(i));
-        }
-        return out;
-    }
-
-    // ---- Values --------------------------------------------------------------------------------
-
-    bool isNumber() const { return value_.is_number(); }
-
-    // A number, as the float the renderer will see, checked against `range`.
-    float number(const Interval& range = kFinite) const {
-        if (!value_.is_number()) {
-            fail(expected("a number"));
-        }
-        double x = value_.get<double>();
-        if (!(std::abs(x) <= std::numeric_limits<float>::max())) {
-            fail("must be a finite number within the range of a float (got " + value_.dump() + ")");
-        }
-        auto f = static_cast<float>(x);
-        if (!range.contains(f)) {
-            fail("must be " + range.describe() + " (got " + value_.dump() + ")");
-        }
-        return f;
-    }
-
-    // An integral number in [lo, hi]; 16 and 16.0 are both integral.
-    std::uint32_t integer(std::uint32_t lo, std::uint32_t hi) const {
-        if (!value_.is_number()) {
-            fail(expected("an integer"));
-        }
-        double x = value_.get<double>();
-        if (!(x >= lo && x <= hi && x == std::floor(x))) {
-            fail("must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "] (got " +
-                 value_.dump() + ")");
-        }
-        return static_cast<std::uint32_t>(x);
-    }
-
-    const std::string& string() const {
-        if (!value_.is_string()) {
-            fail(expected("a string"));
-        }
-        return value_.get_ref<const std::string&>();
-    }
-
-    // One of the names of a settings enum (settings.h).
-    template <typename E>
-    E setting() const {
-        E out{};
-        if (!parse(string(), out)) {
-            fail("unknown value '" + string() + "' (expected " + choices(out) + ")");
-        }
-        return out;
-    }
-
-    glm::vec3 vec3() const { return triple("expected an array of 3 numbers", kFinite); }
-
-    glm::vec3 rgb(const Interval& range) const { return triple("expected an RGB array of 3 numbers", range); }
-
-    // An array of 3 numbers, each checked against `range`; `mismatch` is the message for anything else.
-    glm::vec3 triple(const char* mismatch, const Interval& range) const {
-        if (!value_.is_array() || value_.size() != 3) {
-            fail(mismatch);
-        }
-        return {element(0).number(range), element(1).number(range), element(2).number(range)};
-    }
-
-    // A vector the renderer normalises.
-    glm::vec3 direction() const {
-        glm::vec3 v = vec3();
-        checkNormalizable(v, "must be non-zero");
-        return v;
-    }
-
-    // Fails unless |v|² is a positive, finite float: `ifZero` says why a zero vector is wrong here.
-    void checkNormalizable(glm::vec3 v, const std::string& ifZero) const {
-        float length2 = glm::dot(v, v);
-        if (length2 == 0.0f) {
-            fail(ifZero);
-        }
-        if (!std::isfinite(length2)) {
-            fail("too large: the squared length overflows a float");
-        }
-    }
-
-    // Fails unless the parallelogram spanned by u and v has an area above 1e-12 whose square (which
-    // intersection divides by) is a finite float; `ifDegenerate` is the message for a flat one.
-    void checkSpan(glm::vec3 u, glm::vec3 v, const std::string& ifDegenerate) const {
-        glm::vec3 n = glm::cross(u, v);
-        float area2 = glm::dot(n, n);
-        if (!std::isfinite(area2)) {
-            fail("too large: the area overflows a float");
-        }
-        if (!(std::sqrt(area2) > 1e-12f)) {
-            fail(ifDegenerate);
-        }
-    }
-
-private:
-    void expectObject() const {
-        if (!value_.is_object()) {
-            fail(expected("an object"));
-        }
-    }
-
-    std::string expected(const char* what) const {
-        return std::string("expected ") + what + " (got " + value_.type_name() + ")";
-    }
-
-    Node child(const std::string& key) const {
-        return Node(value_.find(key).value(), pointer_ + "/" + pointerToken(key), source_);
-    }
-
-    Node element(std::size_t i) const { return Node(value_[i], pointer_ + "/" + std::to_string(i), source_); }
-
-    const json& value_;
-    std::string pointer_;
-    const std::string& source_;
-};
-
-// ---- JSON syntax --------------------------------------------------------------------------------
-
-// A SAX consumer that only records the first syntax error: where it is and what nlohmann says.
-struct SyntaxErrorLocator : nlohmann::json_sax<json> {
-    std::size_t byte = 0;  // 1-based index of the last character read; size + 1 at the end of input
-    std::string message;
-
-    bool null() override { return true; }
-    bool boolean(bool) override { return true; }
-    bool number_integer(number_integer_t) override { return true; }
-    bool number_unsigned(number_unsigned_t) override { return true; }
-    bool number_float(number_float_t, const string_t&) override { return true; }
-    bool string(string_t&) override { return true; }
-    bool binary(binary_t&) override { return true; }
-    bool start_object(std::size_t) override { return true; }
-    bool key(string_t&) override { return true; }
-    bool end_object() override { return true; }
-    bool start_array(std::size_t) override { return true; }
-    bool end_array() override { return true; }
-    bool parse_error(std::size_t position, const std::string&, const nlohmann::detail::exception& e) override {
-        byte = position;
-        message = e.what();
-        return false;
-    }
-};
-
-// nlohmann's message without its decorations: "[json.exception.parse_error.101] parse error at line
-// 1, column 8: syntax error while parsing value - invalid literal; last read: 'N'" → "invalid
-// literal; last read: 'N'".
-std::string essentialPart(std::string message) {
-    auto dropThrough = [&](const std::string& prefix, const std::string& separator) {
-        if (message.compare(0, prefix.size(), prefix) == 0) {
-            std::size_t end = message.find(separator);
-            if (end != std::string::npos) {
-                message.erase(0, end + separator.size());
-            }
-        }
-    };
-    dropThrough("[json.exception.", "] ");
-    dropThrough("parse error", ": ");
-    dropThrough("syntax error while parsing ", " - ");
-    return message;
-}
-
-json parseJson(const std::string& text, const std::string& source) {
-    json document = json::parse(text, nullptr, /*allow_exceptions=*/false);
-    if (!document.is_discarded()) {
-        return document;
-    }
-    // Parse again to find out where and why: the exception-free parse above only says that it failed.
-    SyntaxErrorLocator locator;
-    json::sax_parse(text, &locator);
-    // The offending character (0-based) and its line and column (1-based).
-    std::size_t offset = std::min(locator.byte > 0 ? locator.byte - 1 : 0, text.size());
-    std::size_t line = 1;
-    std::size_t column = 1;
-    for (std::size_t i = 0; i < offset; ++i) {
-        column = text[i] == '\n' ? 1 : column + 1;
-        line += text[i] == '\n' ? 1 : 0;
-    }
-    throw InputError(printable(source + ": line " + std::to_string(line) + ", column " +
-                               std::to_string(column) + ": " + essentialPart(locator.message)));
-}
+using Node = JsonNode;
 
 // ---- Scene parts --------------------------------------------------------------------------------
 
@@ -538,35 +255,32 @@ void readLights(Scene& scene, const Node& node) {
     }
 }
 
+// The render block: each key a setting of core/setting_specs.h, checked there.
 void readRender(const Node& node, RenderSettings& s) {
-    node.allowKeys({"width", "height", "photons", "frames", "caustic_fraction", "estimator", "kernel", "radius",
-                    "caustic_radius", "k", "alpha", "global", "gather_rays", "light_samples", "max_eye_depth",
-                    "max_photon_depth", "grid", "grid_resolution", "cell_size", "gather_budget", "photon_capacity", "seed",
-                    "exposure", "tonemap"});
-    if (node.has("width")) s.width = node["width"].integer(1, 16384);
-    if (node.has("height")) s.height = node["height"].integer(1, 16384);
-    if (node.has("photons")) s.photons = node["photons"].integer(1, 1u << 28);
-    if (node.has("frames")) s.frames = node["frames"].integer(1, 1000000);
-    if (node.has("caustic_fraction")) s.causticFraction = node["caustic_fraction"].number({0.0, 1.0, false, true});
-    if (node.has("estimator")) s.estimator = node["estimator"].setting<Estimator>();
-    if (node.has("kernel")) s.kernel = node["kernel"].setting<Kernel>();
-    if (node.has("radius")) s.radius = node["radius"].number(kPositive);
-    if (node.has("caustic_radius")) s.causticRadius = node["caustic_radius"].number(kPositive);
-    if (node.has("k")) s.k = node["k"].integer(1, KNN_MAX);
-    if (node.has("alpha")) s.alpha = node["alpha"].number({0.0, 1.0, true, true});
-    if (node.has("global")) s.globalMode = node["global"].setting<GlobalMode>();
-    if (node.has("gather_rays")) s.gatherRays = node["gather_rays"].integer(1, 1024);
-    if (node.has("light_samples")) s.lightSamples = node["light_samples"].integer(1, 1024);
-    if (node.has("max_eye_depth")) s.maxEyeDepth = node["max_eye_depth"].integer(1, 64);
-    if (node.has("max_photon_depth")) s.maxPhotonDepth = node["max_photon_depth"].integer(1, 64);
-    if (node.has("grid")) s.grid = node["grid"].setting<GridKind>();
-    if (node.has("grid_resolution")) s.gridResolution = node["grid_resolution"].integer(1, 1024);
-    if (node.has("cell_size")) s.cellSize = node["cell_size"].number({1.0, 64.0, false, false});
-    if (node.has("gather_budget")) s.gatherBudget = node["gather_budget"].integer(0, 1u << 30);
-    if (node.has("photon_capacity")) s.photonCapacity = node["photon_capacity"].number({1.0, 64.0, false, false});
-    if (node.has("seed")) s.seed = node["seed"].integer(0, std::numeric_limits<std::uint32_t>::max());
-    if (node.has("exposure")) s.exposure = node["exposure"].number();
-    if (node.has("tonemap")) s.tonemap = node["tonemap"].setting<Tonemap>();
+    for (const auto& [key, value] : node.members()) {
+        const SettingSpec* spec = findSetting(key);
+        if (spec == nullptr || key != spec->key) {
+            value.fail("unknown key");
+        }
+        try {
+            const json& v = value.value();
+            if (v.is_number()) {
+                setSettingNumber(s, *spec, v.get<double>(), v.dump(), value.where());
+            } else if (v.is_string() && spec->kind == SettingKind::Choice) {
+                setSetting(s, *spec, v.get<std::string>(), value.where());
+            } else if (v.is_boolean() && spec->kind == SettingKind::Flag) {
+                spec->set(s, v.get<bool>() ? 1.0 : 0.0);
+            } else {
+                const char* expected = spec->kind == SettingKind::Choice ? "a string"
+                                       : spec->kind == SettingKind::Flag ? "true or false"
+                                       : spec->kind == SettingKind::Integer ? "an integer"
+                                                                            : "a number";
+                value.fail(std::string("expected ") + expected + " (got " + v.type_name() + ")");
+            }
+        } catch (const InputError& e) {
+            throw InputError(printable(e.what()));
+        }
+    }
 }
 
 }  // namespace
@@ -596,18 +310,7 @@ Scene loadSceneJson(const std::string& text, const std::string& sourceName) {
     return scene;
 }
 
-Scene loadSceneFile(const std::string& path) {
-    std::error_code error;
-    if (std::filesystem::is_directory(path, error)) {
-        throw InputError(printable(path + ": is a directory, not a scene file"));
-    }
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-        throw InputError(printable(path + ": cannot open file"));
-    }
-    std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-    return loadSceneJson(text, path);
-}
+Scene loadSceneFile(const std::string& path) { return loadSceneJson(readInputFile(path, kSceneFileLimit, "scene file"), path); }
 
 Scene defaultScene() { return loadSceneJson(kEmbeddedCornellJson, "<embedded cornell.json>"); }
 

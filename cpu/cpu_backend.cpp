@@ -1,12 +1,8 @@
 #include "cpu_backend.h"
 
-#include <sys/resource.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstring>
-#include <fstream>
 #include <vector>
 
 #include "parallel.h"
@@ -25,23 +21,6 @@ constexpr std::size_t kGridChunk = 16384;
 
 double millisecondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
-
-// Bytes this process may still map: physical memory, or less under an address-space limit
-// (ulimit -v), less what it has mapped already.
-std::uint64_t availableHostMemory() {
-    std::uint64_t page = std::uint64_t(sysconf(_SC_PAGESIZE));
-    std::uint64_t available = std::uint64_t(sysconf(_SC_PHYS_PAGES)) * page;
-    rlimit limit{};
-    if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY) {
-        std::uint64_t mapped = 0;
-        std::ifstream statm("/proc/self/statm");
-        statm >> mapped;
-        mapped *= page;
-        std::uint64_t room = limit.rlim_cur > mapped ? limit.rlim_cur - mapped : 0;
-        available = std::min(available, room);
-    }
-    return available;
 }
 
 std::uint64_t paddedBytes(std::uint64_t bytes) { return (bytes + 15) / 16 * 16; }
@@ -82,6 +61,11 @@ public:
     }
 
 protected:
+    // The readback of the image and its encoding live beside the buffers.
+    void adjustPlan(BufferPlan& plan, const PhotonBudget&) override {
+        plan.scratchBytes = plan.elements[BINDING_ACCUMULATION] * kHostBytesPerPixel;
+    }
+
     void uploadScene(const Scene& scene, const BufferPlan&) override { scene_ = scene; }
 
     // Buffers whose size is unchanged are kept (a grown photon map keeps the accumulated image);

@@ -43,7 +43,7 @@ sed 's/"radius": 0.38, "material": "mirror"/"radius": -1, "material": "mirror"/'
 expect 2 "negative.json: /objects/5/radius" "$tmp/negative.json" "${small[@]}" -o "$tmp/x.png"
 sed 's/"type": "mirror", "reflectance"/"type": "metal", "reflectance"/' "$scenes/cornell.json" > "$tmp/metal.json"
 expect 2 "metal.json: /materials/mirror/type" "$tmp/metal.json" "${small[@]}" -o "$tmp/x.png"
-expect 2 "missing.json: cannot open file" "$tmp/missing.json" "${small[@]}"
+expect 2 "missing.json: cannot open scene file: No such file or directory" "$tmp/missing.json" "${small[@]}"
 expect 2 "" "${small[@]}" --width 0
 expect 2 "" "${small[@]}" --photons -5
 expect 2 "--estimator: unknown value 'nearest'" "${small[@]}" --estimator nearest

@@ -166,7 +166,7 @@ TEST(SceneLoaderErrors, FileCannotBeOpened) {
         loadSceneFile("/nonexistent/scene.json");
         FAIL() << "loaded";
     } catch (const InputError& e) {
-        EXPECT_STREQ(e.what(), "/nonexistent/scene.json: cannot open file");
+        EXPECT_STREQ(e.what(), "/nonexistent/scene.json: cannot open scene file: No such file or directory");
     }
 }
 

@@ -267,9 +267,19 @@ TEST_F(VulkanBackendTest, EverySceneFileRendersFinite) {
 // A map that overflows its capacity in the first frame is grown and the frame runs again, so the
 // maps hold every photon: they match the CPU's.
 TEST_F(VulkanBackendTest, OverflowingMapGrowsWithoutLosingPhotons) {
+    // Albedo 0.9 in a closed sphere stores ~9 photons per path; room for 1 per path overflows.
+    Scene scene;
+    std::uint32_t wall = scene.addMaterial("wall", makeDiffuse(glm::vec3(0.9f)));
+    scene.addSphere(glm::vec3(0.0f), 1.0f, wall);
+    scene.addPointLight(glm::vec3(0.0f), glm::vec3(10.0f));
+    scene.camera.position = glm::vec3(0.0f);
+    scene.camera.lookAt = glm::vec3(0, 0, -1);
+    scene.finalize();
     RenderSettings settings = smallSettings();
-    settings.photonCapacity = 0.25f;
-    render(defaultScene(), settings);
+    settings.photonCapacity = 1.0f;
+    settings.maxPhotonDepth = 64;
+    settings.radius = 0.2f;
+    render(scene, settings);
     const FrameStats& stats = vulkan_->lastFrameStats();
     for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
         EXPECT_LE(stats.stored[m], stats.capacity[m]) << "map " << m;

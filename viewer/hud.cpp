@@ -11,12 +11,12 @@
 namespace photon::viewer {
 namespace {
 
-// A combo over an enumeration with `count` values named by toString().
+// A combo over every value of an enumeration (enumCount), named by toString().
 template <typename E>
-bool enumCombo(const char* label, E& value, std::uint32_t count) {
+bool enumCombo(const char* label, E& value) {
     bool changed = false;
     if (ImGui::BeginCombo(label, toString(value))) {
-        for (std::uint32_t i = 0; i < count; ++i) {
+        for (std::uint32_t i = 0; i < enumCount<E>(); ++i) {
             E e = static_cast<E>(i);
             if (ImGui::Selectable(toString(e), e == value)) {
                 changed = e != value;
@@ -37,11 +37,16 @@ bool sliderUint(const char* label, std::uint32_t& value, std::uint32_t lo, std::
     return false;
 }
 
-// A count over decades (Dear ImGui 1.86's logarithmic integer slider ignores its minimum).
+// A count over decades (Dear ImGui 1.86's logarithmic integer slider ignores its minimum). The
+// value changes only when the edit is done (the drag released, the typed number entered): every
+// frame's value of a drag, or a half-typed number, would each restart the render, or be refused.
 bool sliderCount(const char* label, std::uint32_t& value, float lo, float hi) {
-    float v = float(value);
+    float* editing = ImGui::GetStateStorage()->GetFloatRef(ImGui::GetID(label), -1.0f);
+    float v = *editing >= 0.0f ? *editing : float(value);
     ImGuiSliderFlags flags = ImGuiSliderFlags_AlwaysClamp | ImGuiSliderFlags_Logarithmic;
-    if (ImGui::SliderFloat(label, &v, lo, hi, "%.0f", flags)) {
+    ImGui::SliderFloat(label, &v, lo, hi, "%.0f", flags);
+    *editing = ImGui::IsItemActive() ? v : -1.0f;
+    if (ImGui::IsItemDeactivatedAfterEdit()) {
         std::uint32_t rounded = std::uint32_t(std::lround(std::clamp(v, lo, hi)));
         if (rounded != value) {
             value = rounded;
@@ -80,8 +85,8 @@ void statsSection(const HudInfo& info) {
 void renderSection(ViewState& state, const HudInfo& info) {
     RenderSettings& s = state.settings;
     bool changed = false;
-    enumCombo("view", state.view, kDisplayViewCount);
-    changed |= enumCombo("estimator", s.estimator, 4);
+    enumCombo("view", state.view);
+    changed |= enumCombo("estimator", s.estimator);
     changed |= sliderCount("photons/frame", s.photons, 1000.0f, 4.0e6f);
     float radius = s.radius > 0.0f ? s.radius : info.radius[MAP_GLOBAL];
     if (ImGui::SliderFloat("radius", &radius, 0.001f, 1.0f, "%.4f", ImGuiSliderFlags_Logarithmic)) {
@@ -101,7 +106,7 @@ void renderSection(ViewState& state, const HudInfo& info) {
     if (s.estimator == Estimator::Progressive) {
         changed |= ImGui::SliderFloat("alpha", &s.alpha, 0.05f, 0.95f);
     }
-    changed |= enumCombo("global light", s.globalMode, 2);
+    changed |= enumCombo("global light", s.globalMode);
     if (s.globalMode == GlobalMode::FinalGather) {
         changed |= sliderUint("gather rays", s.gatherRays, 1, 64);
     }
@@ -109,7 +114,7 @@ void renderSection(ViewState& state, const HudInfo& info) {
     state.settingsChanged |= changed;
 
     ImGui::SliderFloat("exposure", &state.exposure, -8.0f, 8.0f, "%.1f stops");
-    enumCombo("tone curve", state.tonemap, 3);
+    enumCombo("tone curve", state.tonemap);
     const float scales[] = {1.0f, 0.5f, 0.25f, 0.125f};
     const char* scaleNames[] = {"1", "1/2", "1/4", "1/8"};
     int scale = int(std::find(scales, scales + 4, state.renderScale) - scales) % 4;

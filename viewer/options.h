@@ -14,6 +14,15 @@ enum class DisplayView : std::uint32_t { Final, Direct, Global, Caustic, Dots, G
 constexpr std::uint32_t kDisplayViewCount = 6;
 const char* toString(DisplayView view);
 
+}  // namespace photon::viewer
+
+namespace photon {
+template <>
+constexpr std::uint32_t enumCount<viewer::DisplayView>() { return viewer::kDisplayViewCount; }
+}  // namespace photon
+
+namespace photon::viewer {
+
 struct ViewerOptions {
     std::string scenePath;           // empty: the built-in Cornell box
     Scene scene;                     // loaded from scenePath (or the built-in one)

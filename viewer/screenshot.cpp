@@ -3,9 +3,9 @@
 #include <cstdint>
 #include <vector>
 
-#include <stb_image_write.h>
 
 #include "core/error.h"
+#include "core/image.h"
 
 namespace photon::viewer {
 namespace {
@@ -62,9 +62,7 @@ void Screenshot::save(const std::string& path) const {
         rgb[3 * i + 1] = bgra[4 * i + 1];
         rgb[3 * i + 2] = bgra[4 * i + (swap ? 0 : 2)];
     }
-    if (!stbi_write_png(path.c_str(), int(extent_.width), int(extent_.height), 3, rgb.data(), int(extent_.width) * 3)) {
-        throw RuntimeError(path + ": cannot write PNG");
-    }
+    writeRgb8Png(path, rgb.data(), extent_.width, extent_.height);
 }
 
 }  // namespace photon::viewer

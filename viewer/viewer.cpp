@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/output_file.h"
 #include "hud.h"
 #include "vulkan/check.h"
 #include "vulkan/objects.h"
@@ -16,7 +17,11 @@ namespace photon::viewer {
 
 const char* toString(DisplayView view) {
     const char* names[] = {"final", "direct", "global", "caustic", "dots", "grid"};
-    return names[std::uint32_t(view) % kDisplayViewCount];
+    static_assert(sizeof(names) / sizeof(names[0]) == kDisplayViewCount, "a name for every view");
+    if (std::uint32_t(view) >= kDisplayViewCount) {
+        throw std::logic_error("unknown display view " + std::to_string(std::uint32_t(view)));
+    }
+    return names[std::uint32_t(view)];
 }
 
 Viewer::Viewer(const ViewerOptions& options)
@@ -224,11 +229,7 @@ void Viewer::printSummary() const {
                    {"display", m.passes.display},           {"hud", m.passes.hud},
                    {"total", m.stages.total() + m.passes.total()}};
     j["photons_per_second"] = m.photonsPerSecond;
-    std::ofstream out(options_.statsPath);
-    if (!out) {
-        throw RuntimeError(options_.statsPath + ": cannot open for writing");
-    }
-    out << j.dump(2) << "\n";
+    writeOutputFile(options_.statsPath, j.dump(2) + "\n", "stats");
 }
 
 }  // namespace photon::viewer

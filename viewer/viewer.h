@@ -16,6 +16,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <future>
 #include <memory>
 #include <string>
 
@@ -65,6 +66,9 @@ private:
     void applyChanges();
     void applySettings();
     void loadScene(const std::string& path, bool keepCameraAndSettings);
+    void finishLoadingScene();
+    void installScene(const Scene& scene, const std::string& path, bool keepCameraAndSettings);
+    void report(const std::string& message);
     void watchSceneFile();
     void animateLight(float seconds);
 
@@ -101,6 +105,9 @@ private:
     LightEditor lights_;
     RenderSettings goodSettings_;          // the last settings the backend accepted
     std::string scenePath_;                // empty: the built-in Cornell box
+    std::future<Scene> loading_;           // a scene file being read and parsed, if any
+    std::string loadingPath_;
+    bool loadingKeeps_ = false;            // it keeps the camera and settings (a reload)
     std::filesystem::file_time_type sceneTime_{};
     std::chrono::steady_clock::time_point lastWatch_{};
     glm::vec3 lightCircleCentre_{0.0f};    // where the circling light started

@@ -64,7 +64,7 @@ void Viewer::drawFrame() {
     state_.screenshot = false;
     bool copy = !frame_.screenshot.empty() && (!swapchain_ || swapchain_->canCopyFrom());
     if (!frame_.screenshot.empty() && !copy) {
-        state_.message = "this swapchain's images cannot be copied: no screenshot";
+        report("this swapchain's images cannot be copied: no screenshot");
         frame_.screenshot.clear();
     }
     bool hud = state_.showHud && (!copy || state_.screenshotHud);
@@ -154,8 +154,7 @@ void Viewer::finishFrame() {
 
     if (!frame_.screenshot.empty()) {
         screenshot_->save(frame_.screenshot);
-        std::fprintf(stderr, "photon-view: saved %s\n", frame_.screenshot.c_str());
-        state_.message = "saved " + frame_.screenshot;
+        report("saved " + frame_.screenshot);
         frame_.screenshot.clear();
     }
     context_->checkValidation("a viewer frame");

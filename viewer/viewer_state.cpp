@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 #include <utility>
 
 #include "core/error.h"
@@ -29,7 +30,7 @@ View backendView(DisplayView view) {
         case DisplayView::Dots: return View::Direct;
         case DisplayView::Grid: return View::Grid;
     }
-    return View::Final;
+    throw std::logic_error("unknown display view");
 }
 
 }  // namespace
@@ -46,6 +47,7 @@ void Viewer::applyChanges() {
         state_.reloadScene = false;
         loadScene(scenePath_, true);
     }
+    finishLoadingScene();
     watchSceneFile();
     if (state_.resetCamera) {
         state_.resetCamera = false;
@@ -92,8 +94,7 @@ void Viewer::applySettings() {
             if (!started_ || options_.frames > 0 || attempt == 3) {
                 throw;  // at start, and in scripted runs, a bad request fails the program
             }
-            state_.message = e.what();
-            std::fprintf(stderr, "photon-view: %s\n", e.what());
+            report(e.what());
             if (s.width != goodSettings_.width || s.height != goodSettings_.height) {
                 state_.renderScale *= 0.5f;
             } else {
@@ -104,18 +105,38 @@ void Viewer::applySettings() {
     }
 }
 
-// Opens a scene file (the built-in Cornell box for an empty path when reloading). An unreadable
-// or invalid file leaves the current scene and says why in the HUD.
+// Opens a scene file (the built-in Cornell box for an empty path when reloading). The file is read
+// and parsed on a thread of its own, with the reader of every program (regular files only, with a
+// size cap), so that the frame loop never waits for it; installScene() takes the result. An
+// unreadable or invalid file leaves the current scene and says why in the HUD.
 void Viewer::loadScene(const std::string& path, bool keepCameraAndSettings) {
-    Scene scene;
-    try {
-        scene = path.empty() ? defaultScene() : loadSceneFile(path);
-        sceneTime_ = path.empty() ? std::filesystem::file_time_type{} : std::filesystem::last_write_time(path);
-    } catch (const std::exception& e) {
-        state_.message = e.what();
-        std::fprintf(stderr, "photon-view: %s\n", e.what());
+    if (path.empty()) {
+        installScene(defaultScene(), path, keepCameraAndSettings);
         return;
     }
+    if (loading_.valid()) {
+        return;  // one load at a time; the watch notices later changes again
+    }
+    std::error_code error;
+    sceneTime_ = std::filesystem::last_write_time(path, error);
+    loadingPath_ = path;
+    loadingKeeps_ = keepCameraAndSettings;
+    loading_ = std::async(std::launch::async, [path] { return loadSceneFile(path); });
+}
+
+// Installs a scene whose loading has finished, if one has.
+void Viewer::finishLoadingScene() {
+    if (!loading_.valid() || loading_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) {
+        return;
+    }
+    try {
+        installScene(loading_.get(), loadingPath_, loadingKeeps_);
+    } catch (const std::exception& e) {
+        report(e.what());
+    }
+}
+
+void Viewer::installScene(const Scene& scene, const std::string& path, bool keepCameraAndSettings) {
     scenePath_ = path;
     lights_ = LightEditor(scene);
     state_.selectedLight = 0;
@@ -128,16 +149,23 @@ void Viewer::loadScene(const std::string& path, bool keepCameraAndSettings) {
     }
     backend_->setScene(lights_.scene());
     state_.settingsChanged = true;
-    state_.message = "loaded " + (path.empty() ? scene.name : path);
-    std::fprintf(stderr, "photon-view: %s\n", state_.message.c_str());
+    report("loaded " + (path.empty() ? scene.name : path));
     setTitle();
+}
+
+// A notice or an error: shown in the HUD, and printed once (not again while it stays the same).
+void Viewer::report(const std::string& message) {
+    if (message != state_.message) {
+        std::fprintf(stderr, "photon-view: %s\n", printable(message).c_str());
+    }
+    state_.message = message;
 }
 
 // Reloads the scene file when it changes on disk (checked twice a second), so that editing its
 // lights or objects shows at once.
 void Viewer::watchSceneFile() {
     auto now = std::chrono::steady_clock::now();
-    if (!state_.watchScene || scenePath_.empty() || now - lastWatch_ < std::chrono::milliseconds(500)) {
+    if (!state_.watchScene || scenePath_.empty() || loading_.valid() || now - lastWatch_ < std::chrono::milliseconds(500)) {
         return;
     }
     lastWatch_ = now;

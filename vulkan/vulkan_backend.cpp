@@ -13,13 +13,16 @@ std::unique_ptr<Backend> createVulkanBackend(const BackendOptions& options) {
     return std::make_unique<vk::VulkanBackend>(std::make_shared<vk::Context>(contextOptions));
 }
 
-int vulkanDeviceCount() {
+namespace {
+
+int countDevices(bool hardwareOnly) {
     try {
         VkInstance instance = vk::createBareInstance();
         int count = 0;
         try {
             for (const vk::DeviceCandidate& c : vk::listDevices(instance, VK_NULL_HANDLE, {})) {
-                count += c.unsuitable.empty() ? 1 : 0;
+                bool software = c.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+                count += c.unsuitable.empty() && !(hardwareOnly && software) ? 1 : 0;
             }
         } catch (...) {
             count = 0;
@@ -30,5 +33,11 @@ int vulkanDeviceCount() {
         return 0;
     }
 }
+
+}  // namespace
+
+int vulkanDeviceCount() { return countDevices(false); }
+
+int vulkanHardwareDeviceCount() { return countDevices(true); }
 
 }  // namespace photon

@@ -16,4 +16,7 @@ std::unique_ptr<Backend> createVulkanBackend(const BackendOptions& options);
 // Vulkan devices that can run the backend; 0 when there is no loader, driver or device. Never throws.
 int vulkanDeviceCount();
 
+// The same, counting only hardware GPUs (not CPU implementations such as lavapipe).
+int vulkanHardwareDeviceCount();
+
 }  // namespace photon

@@ -1,29 +1,39 @@
 #!/usr/bin/env bash
-# Builds the scene-loader fuzz target with clang in its own build directory and runs it for $1
-# seconds (default 60), seeded with scenes/*.json. Exits non-zero if libFuzzer finds a crash, a
-# sanitizer report, a leak or a slow input; the input that did it is left in <build>/fuzz-artifacts.
+# Builds the fuzz targets with clang (AddressSanitizer, UBSan, fuzzer coverage over the core and the
+# CPU backend) in their own build directory and runs each for $1 seconds (default 60), seeded from
+# scenes/*.json and the committed corpus in tests/fuzz/corpus/. Exits non-zero if libFuzzer finds a
+# crash, a sanitizer report, a leak or a slow input; the input that did it is left in
+# <build>/fuzz-artifacts/<target>.
 # Usage: tests/fuzz/run.sh [seconds] [build-dir]   (build-dir defaults to build-fuzz)
 set -euo pipefail
 
 seconds="${1:-60}"
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 build="$(realpath -m "${2:-$root/build-fuzz}")"
+sanitize="-fsanitize=address,undefined,fuzzer-no-link -fno-sanitize-recover=all -fno-omit-frame-pointer"
 
-CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_C_FLAGS="$sanitize" -DCMAKE_CXX_FLAGS="$sanitize" \
   -DPHOTON_FUZZ=ON -DPHOTON_CUDA=OFF -DPHOTON_VULKAN=OFF -DPHOTON_VIEWER=OFF -DPHOTON_TESTS=OFF
-cmake --build "$build" --target scene_loader_fuzz --parallel "$(nproc)"
-
-corpus="$build/fuzz-corpus"
-artifacts="$build/fuzz-artifacts"
-rm -rf "$corpus" "$artifacts"
-mkdir -p "$corpus" "$artifacts"
-cp "$root"/scenes/*.json "$corpus"/
+cmake --build "$build" --target scene_loader_fuzz render_fuzz --parallel "$(nproc)"
 
 status=0
-"$build/bin/scene_loader_fuzz" "$corpus" -max_total_time="$seconds" -max_len=65536 -rss_limit_mb=2048 \
-  -timeout=10 -artifact_prefix="$artifacts/" -print_final_stats=1 || status=$?
-if [ "$status" -ne 0 ]; then
-  echo "scene_loader_fuzz failed (exit $status); reproducer(s) in $artifacts:" >&2
-  ls -l "$artifacts" >&2
-fi
+for target in scene_loader_fuzz render_fuzz; do
+  corpus="$build/fuzz-corpus/$target"
+  artifacts="$build/fuzz-artifacts/$target"
+  rm -rf "$corpus" "$artifacts"
+  mkdir -p "$corpus" "$artifacts"
+  cp "$root"/scenes/*.json "$corpus"/
+  if [ -d "$root/tests/fuzz/corpus/$target" ]; then
+    cp "$root/tests/fuzz/corpus/$target"/* "$corpus"/
+  fi
+  echo "== $target for $seconds s"
+  "$build/bin/$target" "$corpus" -max_total_time="$seconds" -max_len=65536 -rss_limit_mb=2048 \
+    -timeout=10 -artifact_prefix="$artifacts/" -print_final_stats=1 || {
+    code=$?
+    echo "$target failed (exit $code); reproducer(s) in $artifacts:" >&2
+    ls -l "$artifacts" >&2
+    status=$code
+  }
+done
 exit "$status"
