@@ -12,13 +12,14 @@ void addRenderOptions(CLI::App& app, RenderOptions& o) {
             app.add_flag(spec.flag, o.flags[spec.flag], help);
             continue;
         }
+        // Given twice, the last one counts (as in most tools), so that a script can override.
         if (spec.kind == SettingKind::Choice) {
             help += ": " + spec.choices;
         } else {
             help += " (" + (spec.kind == SettingKind::Integer ? std::string("integer ") : std::string()) +
                     spec.range.describe() + ")";
         }
-        app.add_option(spec.flag, o.values[spec.flag], help);
+        app.add_option(spec.flag, o.values[spec.flag], help)->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
     }
 }
 

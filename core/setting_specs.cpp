@@ -109,8 +109,10 @@ void store(RenderSettings& settings, const SettingSpec& spec, double value, cons
         auto f = static_cast<float>(value);
         Range bounds{float(spec.range.lo), float(spec.range.hi), spec.range.openLo, spec.range.openHi};
         if (!std::isfinite(value) || !std::isfinite(f) || !bounds.contains(f)) {
+            bool radius = spec.range.lo == kRadius.lo;
             fail(where, "must be " + (std::isfinite(value) ? "" : std::string("a finite number ")) +
-                            expectation(spec) + " (got " + shown + ")");
+                            expectation(spec) + " (got " + shown +
+                            (radius && value == 0.0 ? "; omit it for the automatic radius)" : ")"));
         }
         value = f;
     }
