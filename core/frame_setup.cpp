@@ -29,8 +29,7 @@ std::uint32_t bitsBelow(std::uint64_t n) {
 
 PhotonBudget planPhotons(const Scene& scene, const RenderSettings& settings) {
     PhotonBudget b;
-    b.splitCaustics = scene.hasCausticTargets() && scene.targets.size() <= CAUSTIC_TARGETS_MAX &&
-                      settings.causticFraction > 0.0f;
+    b.splitCaustics = scene.hasCausticTargets() && settings.causticFraction > 0.0f;
     if (b.splitCaustics) {
         b.causticPaths = static_cast<std::uint32_t>(std::lround(double(settings.photons) * settings.causticFraction));
         b.causticPaths = std::min(b.causticPaths, settings.photons - 1u);
@@ -78,6 +77,7 @@ FrameParams makeFrameParams(const Scene& scene, const CameraDesc& camera, const 
     info.triangleCount = static_cast<std::uint32_t>(scene.triangles.size());
     info.lightCount = static_cast<std::uint32_t>(scene.lights.size());
     info.targetCount = budget.splitCaustics ? static_cast<std::uint32_t>(scene.targets.size()) : 0u;
+    info.bvhNodeCount = static_cast<std::uint32_t>(scene.bvhNodes.size());
     info.background = scene.background;
 
     bool progressive = settings.estimator == Estimator::Progressive;

@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "shared/material.h"
+
+#include <glm/gtc/matrix_transform.hpp>
 
 namespace photon {
 namespace {
@@ -125,10 +128,105 @@ void Scene::addQuad(glm::vec3 corner, glm::vec3 edgeU, glm::vec3 edgeV, std::uin
 void Scene::addTriangle(glm::vec3 a, glm::vec3 b, glm::vec3 c, std::uint32_t material) {
     Triangle t{};
     t.v0 = a;
-    t.edge1 = b - a;
-    t.edge2 = c - a;
+    t.v1 = b;
+    t.v2 = c;
     t.material = material;
+    t.attributes = NONE;
+    objects.push_back({std::uint32_t(triangles.size()), 1});
     triangles.push_back(t);
+}
+
+glm::mat4 composeTransform(glm::vec3 scale, float rotateDegrees, glm::vec3 axis, glm::vec3 translate) {
+    glm::mat4 m = glm::translate(glm::mat4(1.0f), translate);
+    if (rotateDegrees != 0.0f) {
+        m = glm::rotate(m, glm::radians(rotateDegrees), glm::normalize(axis));
+    }
+    return glm::scale(m, scale);
+}
+
+void Scene::addMesh(const Mesh& mesh, const glm::mat4& transform) {
+    glm::mat3 normalTransform = glm::transpose(glm::inverse(glm::mat3(transform)));
+    bool mirrors = glm::determinant(glm::mat3(transform)) < 0.0f;
+    bool hasNormals = mesh.normals.size() == mesh.positions.size() && !mesh.normals.empty();
+    bool hasTexcoords = mesh.texcoords.size() == mesh.positions.size() && !mesh.texcoords.empty();
+    std::vector<glm::vec3> world(mesh.positions.size());
+    for (std::size_t i = 0; i < world.size(); ++i) {
+        world[i] = glm::vec3(transform * glm::vec4(mesh.positions[i], 1.0f));
+    }
+    TriangleObject object{std::uint32_t(triangles.size()), 0};
+    triangles.reserve(triangles.size() + mesh.triangles.size());
+    if (hasNormals || hasTexcoords) {
+        triangleAttributes.reserve(triangleAttributes.size() + mesh.triangles.size());
+    }
+    for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+        glm::uvec3 v = mesh.triangles[f];
+        if (mirrors) {
+            std::swap(v.y, v.z);  // a mirror image reverses the winding: keep the front the front
+        }
+        glm::vec3 a = world[v.x];
+        glm::vec3 b = world[v.y];
+        glm::vec3 c = world[v.z];
+        glm::vec3 n = glm::cross(b - a, c - a);
+        float area2 = glm::dot(n, n);
+        float scale2 = glm::dot(b - a, b - a) * glm::dot(c - a, c - a);
+        if (!(area2 > 1e-14f * scale2) || !std::isfinite(area2) || !std::isfinite(scale2)) {
+            droppedTriangles += 1;
+            continue;
+        }
+        Triangle t{};
+        t.v0 = a;
+        t.v1 = b;
+        t.v2 = c;
+        t.material = mesh.materials[f];
+        t.attributes = NONE;
+        if (hasNormals || hasTexcoords) {
+            TriangleAttributes attributes{};
+            if (hasNormals) {
+                glm::vec3 normals[3] = {mesh.normals[v.x], mesh.normals[v.y], mesh.normals[v.z]};
+                bool usable = true;
+                for (glm::vec3& nv : normals) {
+                    nv = normalTransform * nv;
+                    float length = glm::length(nv);
+                    usable = usable && std::isfinite(length) && length > 0.0f;
+                    nv = usable ? nv / length : nv;
+                }
+                if (usable) {
+                    attributes.normal0 = octEncode(normals[0]);
+                    attributes.normal1 = octEncode(normals[1]);
+                    attributes.normal2 = octEncode(normals[2]);
+                    attributes.flags |= ATTRIBUTE_NORMALS;
+                }
+            }
+            if (hasTexcoords) {
+                attributes.s0 = mesh.texcoords[v.x].x;
+                attributes.t0 = mesh.texcoords[v.x].y;
+                attributes.s1 = mesh.texcoords[v.y].x;
+                attributes.t1 = mesh.texcoords[v.y].y;
+                attributes.s2 = mesh.texcoords[v.z].x;
+                attributes.t2 = mesh.texcoords[v.z].y;
+                attributes.flags |= ATTRIBUTE_TEXCOORDS;
+            }
+            t.attributes = std::uint32_t(triangleAttributes.size());
+            triangleAttributes.push_back(attributes);
+        }
+        triangles.push_back(t);
+        object.count += 1;
+    }
+    if (object.count > 0) {
+        objects.push_back(object);
+    }
+}
+
+std::uint32_t Scene::addTexture(std::uint32_t width, std::uint32_t height, std::vector<glm::uvec2> linearTexels,
+                                std::uint32_t wrapS, std::uint32_t wrapT) {
+    Texture t{};
+    t.offset = std::uint32_t(texels.size());
+    t.width = width;
+    t.height = height;
+    t.wrap = wrapS | (wrapT << 4u);
+    texels.insert(texels.end(), linearTexels.begin(), linearTexels.end());
+    textures.push_back(t);
+    return std::uint32_t(textures.size() - 1);
 }
 
 void Scene::addPointLight(glm::vec3 position, glm::vec3 power) {
@@ -162,6 +260,13 @@ void Scene::addSphereLight(glm::vec3 center, float radius, glm::vec3 power) {
     addSphere(center, radius, m);
 }
 
+void Scene::addDirectionalLight(glm::vec3 direction, glm::vec3 irradiance) {
+    Light l = emptyLight(LIGHT_DIRECTIONAL, glm::vec3(0.0f), irradiance);
+    l.axis = glm::normalize(direction);
+    l.edgeU = irradiance;
+    lights.push_back(l);
+}
+
 void Scene::addQuadLight(glm::vec3 corner, glm::vec3 edgeU, glm::vec3 edgeV, glm::vec3 power) {
     Light l = emptyLight(LIGHT_QUAD, corner, power);
     l.edgeU = edgeU;
@@ -174,7 +279,142 @@ void Scene::addQuadLight(glm::vec3 corner, glm::vec3 edgeU, glm::vec3 edgeV, glm
     addQuad(corner, edgeU, edgeV, m);
 }
 
+// The sphere bounding targets [first, last).
+CausticTarget boundingTarget(const std::vector<CausticTarget>& t, std::size_t first, std::size_t last) {
+    glm::vec3 lo(FLOAT_MAX);
+    glm::vec3 hi(-FLOAT_MAX);
+    for (std::size_t i = first; i < last; ++i) {
+        lo = glm::min(lo, t[i].center - glm::vec3(t[i].radius));
+        hi = glm::max(hi, t[i].center + glm::vec3(t[i].radius));
+    }
+    CausticTarget b{0.5f * (lo + hi), 0.0f};
+    for (std::size_t i = first; i < last; ++i) {
+        b.radius = std::max(b.radius, glm::length(t[i].center - b.center) + t[i].radius);
+    }
+    return b;
+}
+
+// At most `limit` targets: groups split at the median of their centres along their longest
+// extent, the largest group first, each group then one bounding sphere. The caustic pass aims at
+// fewer, larger cones, and stays unbiased.
+void mergeTargets(std::vector<CausticTarget>& targets, std::size_t limit) {
+    if (targets.size() <= limit) {
+        return;
+    }
+    std::vector<std::pair<std::size_t, std::size_t>> groups{{0, targets.size()}};
+    while (groups.size() < limit) {
+        std::size_t widest = groups.size();
+        float widestRadius = -1.0f;
+        for (std::size_t g = 0; g < groups.size(); ++g) {
+            float r = boundingTarget(targets, groups[g].first, groups[g].second).radius;
+            if (groups[g].second - groups[g].first > 1 && r > widestRadius) {
+                widest = g;
+                widestRadius = r;
+            }
+        }
+        if (widest == groups.size()) {
+            break;
+        }
+        auto [first, last] = groups[widest];
+        glm::vec3 lo(FLOAT_MAX);
+        glm::vec3 hi(-FLOAT_MAX);
+        for (std::size_t i = first; i < last; ++i) {
+            lo = glm::min(lo, targets[i].center);
+            hi = glm::max(hi, targets[i].center);
+        }
+        glm::vec3 e = hi - lo;
+        int axis = e.x >= e.y && e.x >= e.z ? 0 : (e.y >= e.z ? 1 : 2);
+        std::size_t middle = first + (last - first) / 2;
+        std::nth_element(targets.begin() + std::ptrdiff_t(first), targets.begin() + std::ptrdiff_t(middle),
+                         targets.begin() + std::ptrdiff_t(last),
+                         [axis](const CausticTarget& x, const CausticTarget& y) { return x.center[axis] < y.center[axis]; });
+        groups[widest] = {first, middle};
+        groups.push_back({middle, last});
+    }
+    std::vector<CausticTarget> merged;
+    for (auto [first, last] : groups) {
+        merged.push_back(boundingTarget(targets, first, last));
+    }
+    targets = merged;
+}
+
 void Scene::finalize() {
+    // Bounds of everything finite (lights' own positions included).
+    glm::vec3 lo(FLOAT_MAX);
+    glm::vec3 hi(-FLOAT_MAX);
+    for (const Sphere& s : spheres) {
+        grow(lo, hi, s.center, s.radius);
+    }
+    for (const Quad& q : quads) {
+        for (glm::vec3 p : {q.corner, q.corner + q.edgeU, q.corner + q.edgeV, q.corner + q.edgeU + q.edgeV}) {
+            grow(lo, hi, p, 0.0f);
+        }
+    }
+    for (const Triangle& t : triangles) {
+        lo = glm::min(lo, glm::min(t.v0, glm::min(t.v1, t.v2)));
+        hi = glm::max(hi, glm::max(t.v0, glm::max(t.v1, t.v2)));
+    }
+    for (const Light& l : lights) {
+        if (l.type != LIGHT_DIRECTIONAL && l.type != LIGHT_TRIANGLES) {
+            grow(lo, hi, l.position, l.radius);
+        }
+    }
+    if (lo.x > hi.x) {
+        lo = glm::vec3(-1.0f);
+        hi = glm::vec3(1.0f);
+    }
+    boundsMin = lo;
+    boundsMax = hi;
+
+    // Directional lights cover the sphere around the bounds.
+    glm::vec3 centre = 0.5f * (lo + hi);
+    float radius = std::max(0.5f * glm::length(hi - lo), 1e-6f);
+    for (Light& l : lights) {
+        if (l.type == LIGHT_DIRECTIONAL) {
+            l.position = centre;
+            l.radius = radius;
+            l.power = l.edgeU * (PI * radius * radius);
+        }
+    }
+
+    // One light for every emissive triangle, which picks them by power (πL·area, mean over
+    // channels; sums in double).
+    lights.erase(std::remove_if(lights.begin(), lights.end(), [](const Light& l) { return l.type == LIGHT_TRIANGLES; }),
+                 lights.end());
+    emissiveTriangles.clear();
+    glm::dvec3 flux(0.0);
+    std::vector<double> powers;
+    for (std::size_t i = 0; i < triangles.size(); ++i) {
+        const Triangle& t = triangles[i];
+        glm::vec3 emission = materials[t.material].emission;
+        if (materials[t.material].type == MATERIAL_EMITTER || isBlack(emission)) {
+            continue;
+        }
+        float area = 0.5f * glm::length(glm::cross(t.v1 - t.v0, t.v2 - t.v0));
+        glm::dvec3 p = glm::dvec3(emission) * (double(PI) * double(area));
+        emissiveTriangles.push_back({std::uint32_t(i), 0.0f, 0.0f, area});
+        powers.push_back((p.x + p.y + p.z) / 3.0);
+        flux += p;
+    }
+    if (!emissiveTriangles.empty()) {
+        double total = 0.0;
+        for (double p : powers) {
+            total += p;
+        }
+        double cdf = 0.0;
+        for (std::size_t i = 0; i < emissiveTriangles.size(); ++i) {
+            double p = total > 0.0 ? powers[i] / total : 1.0 / double(powers.size());
+            cdf += p;
+            emissiveTriangles[i].probability = static_cast<float>(p);
+            emissiveTriangles[i].cdf = static_cast<float>(cdf);
+        }
+        emissiveTriangles.back().cdf = 1.0f;
+        Light l = emptyLight(LIGHT_TRIANGLES, centre, glm::vec3(flux));
+        l.emitterFirst = 0;
+        l.emitterCount = std::uint32_t(emissiveTriangles.size());
+        lights.push_back(l);
+    }
+
     // Lights are picked in proportion to their mean power.
     // Sums in double: powers near the float limit must not overflow into 0 or NaN probabilities.
     auto meanPower = [](const Light& l) { return (double(l.power.x) + double(l.power.y) + double(l.power.z)) / 3.0; };
@@ -193,41 +433,46 @@ void Scene::finalize() {
         lights.back().pickCdf = 1.0f;
     }
 
-    auto specular = [&](std::uint32_t m) { return surfaceIs(materials[m], SURFACE_CAUSTIC_CASTER); };
+    // Caustic targets: a bounding sphere for each bounded caster, a mesh's casters as one.
+    auto caster = [&](std::uint32_t m) { return surfaceIs(materials[m], SURFACE_CAUSTIC_CASTER); };
     targets.clear();
-    glm::vec3 lo(FLOAT_MAX);
-    glm::vec3 hi(-FLOAT_MAX);
     for (const Sphere& s : spheres) {
-        grow(lo, hi, s.center, s.radius);
-        if (specular(s.material)) {
+        if (caster(s.material)) {
             targets.push_back({s.center, s.radius});
         }
     }
     for (const Quad& q : quads) {
-        glm::vec3 c = q.corner + 0.5f * (q.edgeU + q.edgeV);
-        float r = 0.5f * std::max(glm::length(q.edgeU + q.edgeV), glm::length(q.edgeU - q.edgeV));
-        grow(lo, hi, c, r);
-        if (specular(q.material)) {
+        if (caster(q.material)) {
+            glm::vec3 c = q.corner + 0.5f * (q.edgeU + q.edgeV);
+            float r = 0.5f * std::max(glm::length(q.edgeU + q.edgeV), glm::length(q.edgeU - q.edgeV));
             targets.push_back({c, r});
         }
     }
-    for (const Triangle& t : triangles) {
-        glm::vec3 c = t.v0 + (t.edge1 + t.edge2) / 3.0f;
-        float r = std::max({glm::length(t.v0 - c), glm::length(t.v0 + t.edge1 - c), glm::length(t.v0 + t.edge2 - c)});
-        grow(lo, hi, c, r);
-        if (specular(t.material)) {
-            targets.push_back({c, r});
+    for (const TriangleObject& object : objects) {
+        glm::vec3 tlo(FLOAT_MAX);
+        glm::vec3 thi(-FLOAT_MAX);
+        for (std::uint32_t i = object.first; i < object.first + object.count; ++i) {
+            const Triangle& t = triangles[i];
+            if (caster(t.material)) {
+                tlo = glm::min(tlo, glm::min(t.v0, glm::min(t.v1, t.v2)));
+                thi = glm::max(thi, glm::max(t.v0, glm::max(t.v1, t.v2)));
+            }
+        }
+        if (tlo.x <= thi.x) {
+            glm::vec3 c = 0.5f * (tlo + thi);
+            float r = 0.0f;
+            for (std::uint32_t i = object.first; i < object.first + object.count; ++i) {
+                const Triangle& t = triangles[i];
+                if (caster(t.material)) {
+                    r = std::max({r, glm::length(t.v0 - c), glm::length(t.v1 - c), glm::length(t.v2 - c)});
+                }
+            }
+            targets.push_back({c, r * (1.0f + 1e-5f)});
         }
     }
-    for (const Light& l : lights) {
-        grow(lo, hi, l.position, l.radius);
-    }
-    if (lo.x > hi.x) {
-        lo = glm::vec3(-1.0f);
-        hi = glm::vec3(1.0f);
-    }
-    boundsMin = lo;
-    boundsMax = hi;
+    mergeTargets(targets, CAUSTIC_TARGETS_MAX);
+
+    bvh = buildBvh(*this, bvhNodes, primitiveRefs);
 }
 
 float Scene::diagonal() const { return glm::length(boundsMax - boundsMin); }

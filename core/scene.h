@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "bvh.h"
+#include "mesh.h"
 #include "settings.h"
 #include "shared/bindings.h"
 
@@ -35,17 +37,28 @@ Material makeEmitter(glm::vec3 radiance);
 #define PH_SCENE_ONLY_COUNTER(...)
 #define PH_SCENE_VECTOR(NAME, b, T, name, access, sizeClass) PH_SCENE_ONLY_##sizeClass(std::vector<T> name;)
 
+// Triangles that came in as one object (a mesh, or a scene file's triangle): the caustic pass aims
+// at each object's casters as a whole.
+struct TriangleObject {
+    std::uint32_t first = 0;
+    std::uint32_t count = 0;
+};
+
 struct Scene {
     std::string name;
-    // spheres, planes, quads, triangles, materials, lights, and targets (by finalize(): bounding
-    // spheres of the bounded caustic casters, the targets of the caustic pass).
+    // The shared arrays: spheres, planes, quads, triangles with their attributes, materials,
+    // textures and texels, lights; and by finalize(): the emissive triangles, the caustic targets
+    // (bounding spheres of the bounded casters), the BVH nodes and primitive references.
     PH_BUFFERS(PH_SCENE_VECTOR)
     std::vector<std::string> materialNames;
+    std::vector<TriangleObject> objects;
     CameraDesc camera;
     glm::vec3 background{0.0f};
     glm::vec3 boundsMin{0.0f};  // by finalize()
     glm::vec3 boundsMax{0.0f};
     RenderSettings render;
+    std::uint64_t droppedTriangles = 0;  // of meshes: zero area or not finite
+    BvhStats bvh;                        // by finalize()
 
     std::uint32_t addMaterial(const std::string& materialName, const Material& m);
     // Index of a material by name, or NONE.
@@ -55,6 +68,12 @@ struct Scene {
     void addPlane(glm::vec3 point, glm::vec3 normal, std::uint32_t material);
     void addQuad(glm::vec3 corner, glm::vec3 edgeU, glm::vec3 edgeV, std::uint32_t material);
     void addTriangle(glm::vec3 a, glm::vec3 b, glm::vec3 c, std::uint32_t material);
+    // The mesh's triangles, transformed (normals by the inverse transpose; a mirroring transform
+    // keeps each triangle's front), as one object. Triangles without area are dropped and counted.
+    void addMesh(const Mesh& mesh, const glm::mat4& transform);
+    // A texture of linear RGBA texels (16 bits a channel, packed as in shared/texture.h); its index.
+    std::uint32_t addTexture(std::uint32_t width, std::uint32_t height, std::vector<glm::uvec2> linearTexels,
+                             std::uint32_t wrapS, std::uint32_t wrapT);
 
     // Lights; power is the emitted flux in watts per channel. Area lights also add their visible
     // surface, with an emitter material of radiance Φ / (π · area).
@@ -64,8 +83,12 @@ struct Scene {
                       float innerDegrees);
     void addSphereLight(glm::vec3 center, float radius, glm::vec3 power);
     void addQuadLight(glm::vec3 corner, glm::vec3 edgeU, glm::vec3 edgeV, glm::vec3 power);
+    // Parallel light travelling along `direction`, of irradiance E [W/m² per channel] on a surface
+    // facing it (the sun). finalize() sizes it to the scene's bounds.
+    void addDirectionalLight(glm::vec3 direction, glm::vec3 irradiance);
 
-    // Light pick probabilities, caustic targets and bounds. Call after the last add*().
+    // Bounds, the emissive triangles' light, light pick probabilities, caustic targets and the BVH.
+    // Call after the last add*() (again after any change).
     void finalize();
 
     float diagonal() const;

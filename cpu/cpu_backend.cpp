@@ -5,7 +5,7 @@
 #include <cstring>
 #include <vector>
 
-#include "parallel.h"
+#include "core/parallel.h"
 #include "shared/eye_trace.h"
 #include "shared/gather.h"
 #include "shared/photon_map.h"

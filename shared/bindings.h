@@ -21,18 +21,24 @@
     X(PLANES, 2u, Plane, planes, RO, SCENE)                                    \
     X(QUADS, 3u, Quad, quads, RO, SCENE)                                       \
     X(TRIANGLES, 4u, Triangle, triangles, RO, SCENE)                           \
-    X(MATERIALS, 5u, Material, materials, RO, SCENE)                           \
-    X(LIGHTS, 6u, Light, lights, RO, SCENE)                                    \
-    X(TARGETS, 7u, CausticTarget, targets, RO, SCENE)                          \
-    X(PHOTONS, 8u, Photon, photons, RW, PHOTON)                               \
-    X(PHOTON_KEYS, 9u, uint, photonKeys, RW, PHOTON)                          \
-    X(SORTED_PHOTONS, 10u, Photon, sortedPhotons, MAPS, PHOTON)               \
-    X(CELL_COUNTS, 11u, uint, cellCounts, RW, CELL)                           \
-    X(CELL_START, 12u, uint, cellStart, MAPS, CELL)                           \
-    X(COUNTERS, 13u, uint, counters, RW, COUNTER)                             \
-    X(HIT_POINTS, 14u, HitPoint, hitPoints, HITS, PIXEL)                      \
-    X(FRAME, 15u, vec4, frameRadiance, RW, PIXEL)                             \
-    X(ACCUMULATION, 16u, vec4, accumulation, RW, PIXEL)
+    X(TRIANGLE_ATTRIBUTES, 5u, TriangleAttributes, triangleAttributes, RO, SCENE) \
+    X(MATERIALS, 6u, Material, materials, RO, SCENE)                           \
+    X(TEXTURES, 7u, Texture, textures, RO, SCENE)                              \
+    X(TEXELS, 8u, uvec2, texels, RO, SCENE)                                    \
+    X(LIGHTS, 9u, Light, lights, RO, SCENE)                                    \
+    X(EMISSIVE_TRIANGLES, 10u, EmissiveTriangle, emissiveTriangles, RO, SCENE) \
+    X(TARGETS, 11u, CausticTarget, targets, RO, SCENE)                         \
+    X(BVH_NODES, 12u, BvhNode, bvhNodes, RO, SCENE)                            \
+    X(PRIMITIVE_REFS, 13u, uint, primitiveRefs, RO, SCENE)                     \
+    X(PHOTONS, 14u, Photon, photons, RW, PHOTON)                               \
+    X(PHOTON_KEYS, 15u, uint, photonKeys, RW, PHOTON)                          \
+    X(SORTED_PHOTONS, 16u, Photon, sortedPhotons, MAPS, PHOTON)                \
+    X(CELL_COUNTS, 17u, uint, cellCounts, RW, CELL)                            \
+    X(CELL_START, 18u, uint, cellStart, MAPS, CELL)                            \
+    X(COUNTERS, 19u, uint, counters, RW, COUNTER)                              \
+    X(HIT_POINTS, 20u, HitPoint, hitPoints, HITS, PIXEL)                       \
+    X(FRAME, 21u, vec4, frameRadiance, RW, PIXEL)                              \
+    X(ACCUMULATION, 22u, vec4, accumulation, RW, PIXEL)
 
 PH_NAMESPACE_BEGIN
 

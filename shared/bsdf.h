@@ -101,8 +101,11 @@ PH_FN float glossySpecularProbability(PH_IN(Material) m) {
 }
 
 // Sample wi given wo. n is the geometric normal as the primitive defines it (outward for
-// spheres): the dielectric needs it to tell entering from leaving. Uses three random numbers.
-PH_FN BsdfSample sampleBsdf(PH_IN(Material) m, vec3 wo, vec3 n, PH_INOUT(Rng) rng) {
+// spheres): the dielectric needs it to tell entering from leaving. ns is the shading normal, on
+// n's side, about which the lobes are sampled; a direction on the wrong side of the geometric
+// surface (possible where the two normals differ) is absorbed, so that no light leaks through it.
+// Uses three random numbers.
+PH_FN BsdfSample sampleBsdf(PH_IN(Material) m, vec3 wo, vec3 n, vec3 ns, PH_INOUT(Rng) rng) {
     BsdfSample bs;
     bs.direction = n;
     bs.weight = vec3(0.0f);
@@ -110,7 +113,9 @@ PH_FN BsdfSample sampleBsdf(PH_IN(Material) m, vec3 wo, vec3 n, PH_INOUT(Rng) rn
     float u0 = rngNext(rng);
     float u1 = rngNext(rng);
     float u2 = rngNext(rng);
-    vec3 nf = facingNormal(n, wo);
+    float side = dot(wo, n) >= 0.0f ? 1.0f : -1.0f;
+    vec3 nf = ns * side;
+    bool transmits = false;
     if (m.type == MATERIAL_DIFFUSE) {
         bs.direction = localToWorld(sampleCosineHemisphere(u1, u2), nf);
         bs.weight = m.albedo;
@@ -151,7 +156,7 @@ PH_FN BsdfSample sampleBsdf(PH_IN(Material) m, vec3 wo, vec3 n, PH_INOUT(Rng) rn
             bs.lobe = LOBE_DIFFUSE;
         }
     } else if (m.type == MATERIAL_GLASS) {
-        bool entering = dot(wo, n) > 0.0f;
+        bool entering = side > 0.0f;
         float eta = entering ? m.ior : 1.0f / m.ior;
         float reflectance = fresnelDielectric(dot(wo, nf), eta);
         vec3 wt = nf;
@@ -163,8 +168,14 @@ PH_FN BsdfSample sampleBsdf(PH_IN(Material) m, vec3 wo, vec3 n, PH_INOUT(Rng) rn
         } else {
             bs.direction = unitVector(wt);
             bs.weight = m.specular;
+            transmits = true;
         }
         bs.lobe = LOBE_SPECULAR;
+    }
+    float across = dot(bs.direction, n) * side;  // > 0: the side wo came from
+    if (bs.lobe != LOBE_NONE && (transmits ? across >= 0.0f : across <= 0.0f)) {
+        bs.lobe = LOBE_NONE;
+        bs.weight = vec3(0.0f);
     }
     return bs;
 }

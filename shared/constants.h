@@ -30,6 +30,8 @@ PH_CONST uint LIGHT_POINT = 0u;
 PH_CONST uint LIGHT_SPOT = 1u;
 PH_CONST uint LIGHT_SPHERE = 2u;
 PH_CONST uint LIGHT_QUAD = 3u;
+PH_CONST uint LIGHT_TRIANGLES = 4u;    // the emissive triangles of the scene, sampled by power
+PH_CONST uint LIGHT_DIRECTIONAL = 5u;  // parallel light from infinity (the sun), over the scene's bounds
 
 // Emission profile of a point light (Light::profile).
 PH_CONST uint EMIT_ISOTROPIC = 0u;   // I = Φ/4π in every direction
@@ -114,10 +116,20 @@ PH_CONST uint STREAM_GATHER = 0x85ebca6bu;
 PH_CONST uint PHOTON_BOUNCE_BITS = 6u;      // bounces 0..63: max_photon_depth is at most 64
 PH_CONST uint PHOTON_PATHS_MAX = 67108864u;  // 2^26 photon paths a frame, so that ids fit 32 bits
 
+// TriangleAttributes::flags bits.
+PH_CONST uint ATTRIBUTE_NORMALS = 1u;    // the vertex normals are set
+PH_CONST uint ATTRIBUTE_TEXCOORDS = 2u;  // the texture coordinates are set
+
+// Texture wrap modes (the glTF sampler's), for s and t (Texture::wrap).
+PH_CONST uint WRAP_REPEAT = 0u;
+PH_CONST uint WRAP_CLAMP = 1u;           // clamp to the edge
+PH_CONST uint WRAP_MIRRORED_REPEAT = 2u;
+
 // Fixed capacities.
 PH_CONST uint KNN_MAX = 64u;              // largest k of the k-nearest estimator
 PH_CONST uint CAUSTIC_TARGETS_MAX = 64u;  // specular objects the caustic pass aims at
 PH_CONST uint LIGHTS_MAX = 64u;
+PH_CONST uint BVH_STACK_SIZE = 64u;       // the traversal's stack: the host refuses deeper hierarchies
 
 PH_NAMESPACE_END
 

@@ -20,7 +20,8 @@ PH_NAMESPACE_BEGIN
 // The surface point being shaded.
 struct Shading {
     vec3 position;
-    vec3 normal;  // faces wo
+    vec3 normal;           // shading normal, facing wo: what the BSDF sees
+    vec3 geometricNormal;  // facing wo: the side photons must come from, the plane of the disc
     vec3 wo;
     Material material;
 };
@@ -52,7 +53,10 @@ PH_FN float kernelNorm(uint kernel) {
 // side, so they skip normalising ωp.
 PH_FN vec3 photonReflectance(PH_IN(Shading) s, uint incoming) {
     if (surfaceIs(s.material, SURFACE_LAMBERTIAN)) {
-        return dot(octDecodeUnnormalized(incoming), s.normal) > 0.0f ? vec3(1.0f) : vec3(0.0f);
+        return dot(octDecodeUnnormalized(incoming), s.geometricNormal) > 0.0f ? vec3(1.0f) : vec3(0.0f);
+    }
+    if (!(dot(octDecodeUnnormalized(incoming), s.geometricNormal) > 0.0f)) {
+        return vec3(0.0f);
     }
     return evalBsdf(s.material, s.wo, octDecode(incoming), s.normal);
 }
@@ -132,7 +136,7 @@ PH_FN void addRadiusContribution(PH_INOUT(vec3) sum, PH_IN(Shading) s, PH_IN(Pho
                                  float thickness, uint kernel) {
     vec3 d = p.position - s.position;
     float d2 = dot(d, d);
-    if (d2 < r2 && abs(dot(d, s.normal)) <= thickness) {
+    if (d2 < r2 && abs(dot(d, s.geometricNormal)) <= thickness) {
         sum += photonReflectance(s, p.incoming) * p.power * kernelProfile(kernel, d2 * invR2);
     }
 }
@@ -148,7 +152,7 @@ PH_FN vec3 estimateRadius(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, fl
     uint budget = BUF(params).gatherBudget;
     vec3 sum = vec3(0.0f);
     vec3 cellSum = vec3(0.0f);
-    CellQuery q = beginCellQuery(s.position, discExtent(s.normal, radius, thickness), grid);
+    CellQuery q = beginCellQuery(s.position, discExtent(s.geometricNormal, radius, thickness), grid);
     uint i = 0u;
     uint end = 0u;
     uint stride = 1u;
@@ -198,7 +202,7 @@ PH_FN vec3 estimateKnn(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float
     uint count = 0u;
     float maxR2 = maxRadius * maxRadius;
     float thickness = DISC_THICKNESS * maxRadius;
-    CellQuery q = beginCellQuery(s.position, discExtent(s.normal, maxRadius, thickness), grid);
+    CellQuery q = beginCellQuery(s.position, discExtent(s.geometricNormal, maxRadius, thickness), grid);
     uint key;
     while (nextCell(q, grid, key)) {
         uint begin;
@@ -208,7 +212,7 @@ PH_FN vec3 estimateKnn(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float
             Photon p = loadMapPhoton(BUF_ARG i);
             vec3 d = p.position - s.position;
             float d2 = dot(d, d);
-            if (d2 >= maxR2 || (count == k && d2 >= heapDistance[0]) || abs(dot(d, s.normal)) > thickness) {
+            if (d2 >= maxR2 || (count == k && d2 >= heapDistance[0]) || abs(dot(d, s.geometricNormal)) > thickness) {
                 continue;
             }
             if (isBlack(photonReflectance(s, p.incoming))) {

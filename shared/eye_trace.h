@@ -8,6 +8,7 @@
 
 #include "bsdf.h"
 #include "lights.h"
+#include "surface.h"
 
 PH_NAMESPACE_BEGIN
 
@@ -50,25 +51,27 @@ PH_FN vec3 projectToPixel(PH_IN(Camera) camera, vec3 point, uint width, uint hei
     return vec3(x, y, z);
 }
 
-// Reflected direct light at x from every light, lightSamples shadow rays each.
-PH_FN vec3 directLight(BUF_PARAM vec3 x, vec3 n, vec3 wo, PH_IN(Material) m, PH_INOUT(Rng) rng) {
+// Reflected direct light at x from every light, lightSamples shadow rays each. ns is the shading
+// normal and ng the geometric one, both facing wo; light from behind the geometric surface is not
+// reflected, and shadow rays leave from its side.
+PH_FN vec3 directLight(BUF_PARAM vec3 x, vec3 ns, vec3 ng, vec3 wo, PH_IN(Material) m, PH_INOUT(Rng) rng) {
     vec3 sum = vec3(0.0f);
     uint samples = BUF(params).lightSamples;
     for (uint l = 0u; l < BUF(params).scene.lightCount; ++l) {
         Light light = BUF(lights)[l];
         for (uint j = 0u; j < samples; ++j) {
-            LightSample ls = sampleDirectLight(light, x, rng);
-            float cosine = dot(n, ls.direction);
-            if (cosine <= 0.0f || isBlack(ls.radiance)) {
+            LightSample ls = sampleDirectLight(BUF_ARG light, x, rng);
+            float cosine = dot(ns, ls.direction);
+            if (cosine <= 0.0f || dot(ng, ls.direction) <= 0.0f || isBlack(ls.radiance)) {
                 continue;
             }
             // The shadow ray runs from where it starts, lifted off the surface, to the point on the
             // light: measured from x instead, a grazing ray would end beyond the light's surface.
-            vec3 origin = offsetRayOrigin(x, n, ls.direction);
+            vec3 origin = offsetRayOrigin(x, ng, ls.direction);
             vec3 toLight = ls.point - origin;
             float distance = sqrt(dot(toLight, toLight));
             if (!traceOccluded(BUF_ARG origin, toLight * (1.0f / distance), distance * (1.0f - 1.0e-4f))) {
-                sum += evalBsdf(m, wo, ls.direction, n) * ls.radiance * cosine;
+                sum += evalBsdf(m, wo, ls.direction, ns) * ls.radiance * cosine;
             }
         }
     }
@@ -83,6 +86,8 @@ PH_FN HitPoint emptyHitPoint() {
     hp.normal = 0u;
     hp.direct = vec3(0.0f);
     hp.outgoing = 0u;
+    hp.albedo = vec3(0.0f);
+    hp.geometricNormal = 0u;
     return hp;
 }
 
@@ -99,14 +104,19 @@ PH_FN HitPoint tracePixel(BUF_PARAM uint pixel) {
             hp.direct += weight * BUF(params).scene.background;
             break;
         }
-        Material m = BUF(materials)[hit.material];
+        SurfacePoint sp = surfaceAt(BUF_ARG hit);
+        Material m = sp.material;
         uint surface = materialFlags(m);
         vec3 wo = -ray.direction;
         if ((surface & SURFACE_EMITS) != 0u) {
+            // Seen by the camera or through mirrors and glass; at diffuse surfaces direct light
+            // counts emitters with shadow rays.
             if (dot(wo, hit.normal) > 0.0f) {
                 hp.direct += weight * m.emission;
             }
-            break;
+            if (m.type == MATERIAL_EMITTER) {
+                break;
+            }
         }
         // A mirror coat continues the path, or the surface's base ends it here.
         bool mirrorCoat = false;
@@ -115,30 +125,34 @@ PH_FN HitPoint tracePixel(BUF_PARAM uint pixel) {
             mirrorCoat = rngNext(rng) < pMirror;
             weight *= mirrorCoat ? vec3(1.0f) : vec3(1.0f / (1.0f - pMirror));
         }
+        float side = dot(wo, sp.geometricNormal) >= 0.0f ? 1.0f : -1.0f;
+        vec3 ng = sp.geometricNormal * side;
+        vec3 ns = sp.shadingNormal * side;
         if ((surface & SURFACE_ENDS_EYE_PATHS) != 0u && !mirrorCoat) {
-            vec3 n = facingNormal(hit.normal, wo);
             hp.position = hit.position;
             hp.material = hit.material;
             hp.weight = weight;
-            hp.normal = octEncode(n);
+            hp.normal = octEncode(ns);
+            hp.geometricNormal = octEncode(ng);
             hp.outgoing = octEncode(wo);
-            hp.direct += weight * directLight(BUF_ARG hit.position, n, wo, storedPart(m), rng);
+            hp.albedo = m.albedo;
+            hp.direct += weight * directLight(BUF_ARG hit.position, ns, ng, wo, storedPart(m), rng);
             break;
         }
         BsdfSample bs;
         if (mirrorCoat) {
             float pMirror = mirrorCoatProbability(m);
-            bs.direction = reflectAbout(wo, facingNormal(hit.normal, wo));
+            bs.direction = reflectAbout(wo, ns);
             bs.weight = m.specular / pMirror;
-            bs.lobe = LOBE_SPECULAR;
+            bs.lobe = dot(bs.direction, ng) > 0.0f ? LOBE_SPECULAR : LOBE_NONE;
         } else {
-            bs = sampleBsdf(m, wo, hit.normal, rng);
+            bs = sampleBsdf(m, wo, sp.geometricNormal, sp.shadingNormal, rng);
         }
         if (bs.lobe == LOBE_NONE) {
             break;
         }
         weight *= bs.weight;
-        ray = makeRay(offsetRayOrigin(hit.position, hit.normal, bs.direction), bs.direction, FLOAT_MAX);
+        ray = makeRay(offsetRayOrigin(hit.position, sp.geometricNormal, bs.direction), bs.direction, FLOAT_MAX);
     }
     return hp;
 }

@@ -9,14 +9,15 @@
 #define PHOTON_SHARED_GATHER_H
 
 #include "estimate.h"
-#include "intersect.h"
+#include "surface.h"
 
 PH_NAMESPACE_BEGIN
 
-PH_FN Shading makeShading(vec3 position, vec3 normal, vec3 wo, PH_IN(Material) m) {
+PH_FN Shading makeShading(vec3 position, vec3 normal, vec3 geometricNormal, vec3 wo, PH_IN(Material) m) {
     Shading s;
     s.position = position;
     s.normal = normal;
+    s.geometricNormal = geometricNormal;
     s.wo = wo;
     s.material = m;
     return s;
@@ -26,34 +27,36 @@ PH_FN vec3 finalGather(BUF_PARAM PH_IN(Shading) s, uint estimator, PH_INOUT(Rng)
     uint rays = BUF(params).gatherRays;
     vec3 sum = vec3(0.0f);
     for (uint g = 0u; g < rays; ++g) {
-        BsdfSample bs = sampleBsdf(s.material, s.wo, s.normal, rng);
+        BsdfSample bs = sampleBsdf(s.material, s.wo, s.geometricNormal, s.normal, rng);
         if (bs.lobe == LOBE_NONE) {
             continue;
         }
         vec3 weight = bs.weight;
-        Ray ray = makeRay(offsetRayOrigin(s.position, s.normal, bs.direction), bs.direction, FLOAT_MAX);
+        Ray ray = makeRay(offsetRayOrigin(s.position, s.geometricNormal, bs.direction), bs.direction, FLOAT_MAX);
         for (uint depth = 0u; depth < BUF(params).maxEyeDepth; ++depth) {
             Hit hit;
             if (!traceClosest(BUF_ARG ray, hit)) {
                 break;
             }
-            Material m = BUF(materials)[hit.material];
+            SurfacePoint sp = surfaceAt(BUF_ARG hit);
+            Material m = sp.material;
             vec3 wo = -ray.direction;
             uint surface = materialFlags(m);
             if ((surface & SURFACE_STORES_PHOTONS) != 0u) {
-                Shading there = makeShading(hit.position, facingNormal(hit.normal, wo), wo, storedPart(m));
+                float side = dot(wo, sp.geometricNormal) >= 0.0f ? 1.0f : -1.0f;
+                Shading there = makeShading(hit.position, sp.shadingNormal * side, sp.geometricNormal * side, wo, storedPart(m));
                 sum += weight * photonEstimate(BUF_ARG MAP_GLOBAL, there, estimator, rngNext(rng));
                 break;
             }
             if ((surface & SURFACE_CAUSTIC_CASTER) == 0u) {
                 break;
             }
-            BsdfSample next = sampleBsdf(m, wo, hit.normal, rng);
+            BsdfSample next = sampleBsdf(m, wo, sp.geometricNormal, sp.shadingNormal, rng);
             if (next.lobe == LOBE_NONE) {
                 break;
             }
             weight *= next.weight;
-            ray = makeRay(offsetRayOrigin(hit.position, hit.normal, next.direction), next.direction, FLOAT_MAX);
+            ray = makeRay(offsetRayOrigin(hit.position, sp.geometricNormal, next.direction), next.direction, FLOAT_MAX);
         }
     }
     return sum / float(max(rays, 1u));
@@ -74,7 +77,9 @@ PH_FN bool viewShowsMap(uint view, uint map) {
 
 // The shading point of a hit point (a mirror coat is not part of it: see storedPart).
 PH_FN Shading hitPointShading(BUF_PARAM PH_IN(HitPoint) hp) {
-    return makeShading(hp.position, octDecode(hp.normal), octDecode(hp.outgoing), storedPart(BUF(materials)[hp.material]));
+    Material m = storedPart(BUF(materials)[hp.material]);
+    m.albedo = hp.albedo;
+    return makeShading(hp.position, octDecode(hp.normal), octDecode(hp.geometricNormal), octDecode(hp.outgoing), m);
 }
 
 // The pixel's radiance once the photon estimates (reflected radiance at the hit point) are known.

@@ -1,5 +1,7 @@
 // Ray-primitive intersection and the two scene queries every stage needs, the closest hit and
-// "is anything in the way", both through one traversal (traceRay).
+// "is anything in the way", both through one traversal (traceRay): infinite planes tested one by
+// one, every bounded primitive (sphere, quad, triangle) through a bounding volume hierarchy built on
+// the host (core/bvh.cpp).
 #ifndef PHOTON_SHARED_INTERSECT_H
 #define PHOTON_SHARED_INTERSECT_H
 
@@ -21,6 +23,8 @@ struct Hit {
     uint material;
     uint kind;    // PRIM_*
     uint index;
+    float b1;     // triangles: barycentric weights of v1 and v2 at the hit
+    float b2;
 };
 
 PH_FN Ray makeRay(vec3 origin, vec3 direction, float tMax) {
@@ -86,80 +90,219 @@ PH_FN float intersectQuad(PH_IN(Ray) ray, PH_IN(Quad) quad, float tMax) {
     return (a >= 0.0f && a <= 1.0f && b >= 0.0f && b <= 1.0f) ? t : tMax;
 }
 
-// Möller–Trumbore, two-sided.
-PH_FN float intersectTriangle(PH_IN(Ray) ray, PH_IN(Triangle) tri, float tMax) {
-    vec3 pvec = cross(ray.direction, tri.edge2);
-    float det = dot(tri.edge1, pvec);
-    if (abs(det) < 1.0e-20f) {
+// What every triangle test of a ray shares (Woop, Benthin and Wald, "Watertight Ray/Triangle
+// Intersection", JCGT 2013): the axes permuted so that z is the direction's largest, and the shear
+// that maps the ray onto +z. Also the inverse direction for box tests, with no zero component, so
+// that no 0·∞ can arise.
+struct RayFrame {
+    vec3 origin;
+    vec3 inverseDirection;
+    uint kx;
+    uint ky;
+    uint kz;
+    vec3 shear;  // (Sx, Sy, Sz)
+};
+
+PH_FN RayFrame makeRayFrame(PH_IN(Ray) ray) {
+    RayFrame f;
+    f.origin = ray.origin;
+    vec3 d = ray.direction;
+    vec3 a = abs(d);
+    f.kz = a.x > a.y ? (a.x > a.z ? 0u : 2u) : (a.y > a.z ? 1u : 2u);
+    f.kx = f.kz == 2u ? 0u : f.kz + 1u;
+    f.ky = f.kx == 2u ? 0u : f.kx + 1u;
+    if (d[f.kz] < 0.0f) {  // keep the winding: swap x and y
+        uint k = f.kx;
+        f.kx = f.ky;
+        f.ky = k;
+    }
+    f.shear = vec3(d[f.kx] / d[f.kz], d[f.ky] / d[f.kz], 1.0f / d[f.kz]);
+    vec3 safe = vec3(abs(d.x) < 1.0e-20f ? (d.x < 0.0f ? -1.0e-20f : 1.0e-20f) : d.x,
+                     abs(d.y) < 1.0e-20f ? (d.y < 0.0f ? -1.0e-20f : 1.0e-20f) : d.y,
+                     abs(d.z) < 1.0e-20f ? (d.z < 0.0f ? -1.0e-20f : 1.0e-20f) : d.z);
+    f.inverseDirection = vec3(1.0f) / safe;
+    return f;
+}
+
+// The watertight test: two-sided, no gaps along shared edges (an edge hit belongs to both
+// triangles). Returns t in (0, tMax) or tMax; b1, b2 are the barycentric weights of v1 and v2.
+PH_FN float intersectTriangle(PH_IN(RayFrame) f, PH_IN(Triangle) tri, float tMax, PH_OUT(float) b1, PH_OUT(float) b2) {
+    b1 = 0.0f;
+    b2 = 0.0f;
+    vec3 a = tri.v0 - f.origin;
+    vec3 b = tri.v1 - f.origin;
+    vec3 c = tri.v2 - f.origin;
+    float ax = a[f.kx] - f.shear.x * a[f.kz];
+    float ay = a[f.ky] - f.shear.y * a[f.kz];
+    float bx = b[f.kx] - f.shear.x * b[f.kz];
+    float by = b[f.ky] - f.shear.y * b[f.kz];
+    float cx = c[f.kx] - f.shear.x * c[f.kz];
+    float cy = c[f.ky] - f.shear.y * c[f.kz];
+    float u = cx * by - cy * bx;
+    float v = ax * cy - ay * cx;
+    float w = bx * ay - by * ax;
+    if ((u < 0.0f || v < 0.0f || w < 0.0f) && (u > 0.0f || v > 0.0f || w > 0.0f)) {
         return tMax;
     }
-    float invDet = 1.0f / det;
-    vec3 tvec = ray.origin - tri.v0;
-    float u = dot(tvec, pvec) * invDet;
-    if (u < 0.0f || u > 1.0f) {
+    float det = u + v + w;
+    if (det == 0.0f) {
         return tMax;
     }
-    vec3 qvec = cross(tvec, tri.edge1);
-    float v = dot(ray.direction, qvec) * invDet;
-    if (v < 0.0f || u + v > 1.0f) {
+    float az = f.shear.z * a[f.kz];
+    float bz = f.shear.z * b[f.kz];
+    float cz = f.shear.z * c[f.kz];
+    float t = (u * az + v * bz + w * cz) / det;
+    if (!(t > 0.0f && t < tMax)) {
         return tMax;
     }
-    float t = dot(tri.edge2, qvec) * invDet;
-    return (t > 0.0f && t < tMax) ? t : tMax;
+    b1 = v / det;
+    b2 = w / det;
+    return t;
+}
+
+// Slab test of the box [lower, upper] within (0, tMax): the entry distance, or FLOAT_MAX if the
+// ray misses it. An empty box (lower > upper) is always missed.
+PH_FN float intersectBox(PH_IN(RayFrame) f, vec3 lower, vec3 upper, float tMax) {
+    vec3 t0 = (lower - f.origin) * f.inverseDirection;
+    vec3 t1 = (upper - f.origin) * f.inverseDirection;
+    vec3 near = min(t0, t1);
+    vec3 far = max(t0, t1);
+    float enter = max(max(near.x, near.y), max(near.z, 0.0f));
+    float leave = min(min(far.x, far.y), min(far.z, tMax));
+    return enter <= leave ? enter : FLOAT_MAX;
 }
 
 PH_CONST uint QUERY_CLOSEST = 0u;  // the nearest surface along the ray
 PH_CONST uint QUERY_ANY = 1u;      // whether there is any (shadow rays): the first one found will do
 
-PH_FN uint primitiveCount(BUF_PARAM uint kind) {
-    if (kind == PRIM_SPHERE) {
-        return BUF(params).scene.sphereCount;
-    }
-    if (kind == PRIM_PLANE) {
-        return BUF(params).scene.planeCount;
-    }
-    if (kind == PRIM_QUAD) {
-        return BUF(params).scene.quadCount;
-    }
-    return BUF(params).scene.triangleCount;
-}
+// A primitive reference of primitiveRefs: kind in the top 2 bits, index below.
+PH_CONST uint PRIMITIVE_INDEX_BITS = 30u;
+PH_FN uint primitiveKind(uint ref) { return ref >> PRIMITIVE_INDEX_BITS; }
+PH_FN uint primitiveIndex(uint ref) { return ref & ((1u << PRIMITIVE_INDEX_BITS) - 1u); }
 
-// Where the ray meets primitive (kind, index) within (0, tMax), or tMax if it does not.
-PH_FN float intersectPrimitive(BUF_PARAM uint kind, uint index, PH_IN(Ray) ray, float tMax) {
+// Where the ray meets bounded primitive `ref` within (0, tMax), or tMax if it does not.
+PH_FN float intersectPrimitive(BUF_PARAM uint ref, PH_IN(Ray) ray, PH_IN(RayFrame) frame, float tMax, PH_OUT(float) b1,
+                               PH_OUT(float) b2) {
+    uint kind = primitiveKind(ref);
+    uint index = primitiveIndex(ref);
+    b1 = 0.0f;
+    b2 = 0.0f;
     if (kind == PRIM_SPHERE) {
         return intersectSphere(ray, BUF(spheres)[index].center, BUF(spheres)[index].radius, tMax);
-    }
-    if (kind == PRIM_PLANE) {
-        return intersectPlane(ray, BUF(planes)[index].normal, BUF(planes)[index].offset, tMax);
     }
     if (kind == PRIM_QUAD) {
         return intersectQuad(ray, BUF(quads)[index], tMax);
     }
-    return intersectTriangle(ray, BUF(triangles)[index], tMax);
+    return intersectTriangle(frame, BUF(triangles)[index], tMax, b1, b2);
 }
 
-// The one traversal of the scene: it visits the primitives the ray may meet and keeps the nearest
-// hit within (0, ray.tMax) (QUERY_ANY: stops at the first). Today the candidates are every
-// primitive, kind by kind; an acceleration structure replaces this loop and nothing else.
-PH_FN bool traceRay(BUF_PARAM PH_IN(Ray) ray, uint query, PH_OUT(float) t, PH_OUT(uint) kind, PH_OUT(uint) index) {
-    t = ray.tMax;
-    kind = NONE;
-    index = NONE;
-    for (uint k = 0u; k < PRIM_KIND_COUNT; ++k) {
-        uint count = primitiveCount(BUF_ARG k);
-        for (uint i = 0u; i < count; ++i) {
-            float tk = intersectPrimitive(BUF_ARG k, i, ray, t);
-            if (tk < t) {
-                t = tk;
-                kind = k;
-                index = i;
-                if (query == QUERY_ANY) {
-                    return true;
-                }
+// The result of a scene query.
+struct TraceResult {
+    float t;
+    uint kind;   // PRIM_*, NONE: nothing within tMax
+    uint index;
+    float b1;    // barycentric weights of a triangle hit
+    float b2;
+};
+
+// Tests the primitives of a leaf, keeping the nearest hit. True when a QUERY_ANY is answered.
+PH_FN bool traceLeaf(BUF_PARAM uint first, uint count, PH_IN(Ray) ray, PH_IN(RayFrame) frame, uint query,
+                     PH_INOUT(TraceResult) result) {
+    for (uint i = first; i < first + count; ++i) {
+        uint ref = BUF(primitiveRefs)[i];
+        float b1;
+        float b2;
+        float t = intersectPrimitive(BUF_ARG ref, ray, frame, result.t, b1, b2);
+        if (t < result.t) {
+            result.t = t;
+            result.kind = primitiveKind(ref);
+            result.index = primitiveIndex(ref);
+            result.b1 = b1;
+            result.b2 = b2;
+            if (query == QUERY_ANY) {
+                return true;
             }
         }
     }
-    return kind != NONE;
+    return false;
+}
+
+// The one traversal of the scene: the nearest hit within (0, ray.tMax) (QUERY_ANY: the first one
+// found). Planes one by one; then the hierarchy, without recursion, in Aila and Laine's manner
+// ("Understanding the Efficiency of Ray Traversal on GPUs", HPG 2009): a node holds both children's
+// boxes, leaves are tested as they are met, the nearer inner child is visited first and the other
+// goes on a stack of BVH_STACK_SIZE (the host builds no deeper hierarchy). Every backend walks the
+// nodes in the same order, so that ties between equally near primitives break alike.
+PH_FN TraceResult traceRay(BUF_PARAM PH_IN(Ray) ray, uint query) {
+    TraceResult result;
+    result.t = ray.tMax;
+    result.kind = NONE;
+    result.index = NONE;
+    result.b1 = 0.0f;
+    result.b2 = 0.0f;
+    for (uint i = 0u; i < BUF(params).scene.planeCount; ++i) {
+        float t = intersectPlane(ray, BUF(planes)[i].normal, BUF(planes)[i].offset, result.t);
+        if (t < result.t) {
+            result.t = t;
+            result.kind = PRIM_PLANE;
+            result.index = i;
+            if (query == QUERY_ANY) {
+                return result;
+            }
+        }
+    }
+    if (BUF(params).scene.bvhNodeCount == 0u) {
+        return result;
+    }
+    RayFrame frame = makeRayFrame(ray);
+    uint stack[BVH_STACK_SIZE];
+    uint depth = 0u;
+    uint node = 0u;
+    while (true) {
+        BvhNode n = BUF(bvhNodes)[node];
+        float tA = intersectBox(frame, n.lowerA, n.upperA, result.t);
+        float tB = intersectBox(frame, n.lowerB, n.upperB, result.t);
+        bool innerA = false;
+        bool innerB = false;
+        if (tA < FLOAT_MAX) {
+            if (n.countA > 0u) {
+                if (traceLeaf(BUF_ARG n.childA, n.countA, ray, frame, query, result)) {
+                    return result;
+                }
+            } else {
+                innerA = true;
+            }
+        }
+        if (tB < FLOAT_MAX) {
+            if (n.countB > 0u) {
+                if (traceLeaf(BUF_ARG n.childB, n.countB, ray, frame, query, result)) {
+                    return result;
+                }
+            } else {
+                innerB = true;
+            }
+        }
+        // A leaf may have brought the nearest hit closer than an inner child's box.
+        innerA = innerA && tA < result.t;
+        innerB = innerB && tB < result.t;
+        if (innerA && innerB) {
+            bool aFirst = tA <= tB;
+            stack[depth] = aFirst ? n.childB : n.childA;
+            depth += 1u;
+            node = aFirst ? n.childA : n.childB;
+        } else if (innerA) {
+            node = n.childA;
+        } else if (innerB) {
+            node = n.childB;
+        } else {
+            if (depth == 0u) {
+                break;
+            }
+            depth -= 1u;
+            node = stack[depth];
+        }
+    }
+    return result;
 }
 
 // The surface of primitive (kind, index) at a point on it: geometric normal and material.
@@ -175,27 +318,31 @@ PH_FN void primitiveSurface(BUF_PARAM uint kind, uint index, vec3 p, PH_OUT(vec3
         normal = unitVector(BUF(quads)[index].w);
         material = BUF(quads)[index].material;
     } else {
-        normal = unitVector(cross(BUF(triangles)[index].edge1, BUF(triangles)[index].edge2));
-        material = BUF(triangles)[index].material;
+        Triangle tri = BUF(triangles)[index];
+        normal = unitVector(cross(tri.v1 - tri.v0, tri.v2 - tri.v0));
+        material = tri.material;
     }
 }
 
 // Closest intersection along the ray within (0, ray.tMax).
 PH_FN bool traceClosest(BUF_PARAM PH_IN(Ray) ray, PH_OUT(Hit) hit) {
-    if (!traceRay(BUF_ARG ray, QUERY_CLOSEST, hit.t, hit.kind, hit.index)) {
+    TraceResult r = traceRay(BUF_ARG ray, QUERY_CLOSEST);
+    if (r.kind == NONE) {
         return false;
     }
-    hit.position = ray.origin + hit.t * ray.direction;
+    hit.t = r.t;
+    hit.kind = r.kind;
+    hit.index = r.index;
+    hit.b1 = r.b1;
+    hit.b2 = r.b2;
+    hit.position = ray.origin + r.t * ray.direction;
     primitiveSurface(BUF_ARG hit.kind, hit.index, hit.position, hit.normal, hit.material);
     return true;
 }
 
 // Whether anything lies on the segment from origin along direction within (0, tMax).
 PH_FN bool traceOccluded(BUF_PARAM vec3 origin, vec3 direction, float tMax) {
-    float t;
-    uint kind;
-    uint index;
-    return traceRay(BUF_ARG makeRay(origin, direction, tMax), QUERY_ANY, t, kind, index);
+    return traceRay(BUF_ARG makeRay(origin, direction, tMax), QUERY_ANY).kind != NONE;
 }
 
 PH_NAMESPACE_END

@@ -38,16 +38,47 @@ struct PH_ALIGN16 Quad {
     vec3 w; float pad1;  // cross(edgeU, edgeV) / |cross(edgeU, edgeV)|²: gives (a, b) of a point
 };
 
+// A triangle by its vertices, wound counter-clockwise about its front (geometric normal
+// (v1 - v0) × (v2 - v0)).
 struct PH_ALIGN16 Triangle {
     vec3 v0; uint material;
-    vec3 edge1; float pad0;  // v1 - v0
-    vec3 edge2; float pad1;  // v2 - v0
+    vec3 v1; uint attributes;  // its TriangleAttributes, or NONE: flat, no texture coordinates
+    vec3 v2; float pad0;
+};
+
+// What a mesh triangle carries besides its vertices: vertex normals for smooth shading and
+// texture coordinates (s, t) at each vertex.
+struct PH_ALIGN16 TriangleAttributes {
+    uint normal0; uint normal1; uint normal2; uint flags;  // octahedral vertex normals; ATTRIBUTE_* bits
+    float s0; float t0; float s1; float t1;
+    float s2; float t2; float pad0; float pad1;
 };
 
 struct PH_ALIGN16 Material {
-    vec3 albedo; uint type;        // diffuse reflectance ρ (diffuse, glossy)
-    vec3 specular; float roughness; // mirror reflectance, glass tint, glossy lobe colour; GGX α
-    vec3 emission; float ior;      // emitted radiance (area-light surfaces); index of refraction (glass)
+    vec3 albedo; uint type;         // diffuse reflectance ρ (diffuse, glossy, reflective)
+    vec3 specular; float roughness;  // mirror reflectance, glass tint, glossy lobe colour; GGX α
+    vec3 emission; float ior;       // emitted radiance (front side); index of refraction (glass)
+    uint albedoTexture; uint pad0; uint pad1; uint pad2;  // a Texture that multiplies albedo, or NONE
+};
+
+// An image in the texels buffer: width × height texels from `offset`, row by row from the top.
+struct PH_ALIGN16 Texture {
+    uint offset; uint width; uint height; uint wrap;  // wrap: WRAP_* of s | (WRAP_* of t) << 4
+};
+
+// A node of the bounding volume hierarchy with both children's boxes (Aila & Laine 2009), so that
+// one fetch tests two boxes. A child is an inner node (count 0: `child` is its node) or a leaf
+// (count primitives from primitiveRefs[child]); an absent child has an empty box.
+struct PH_ALIGN16 BvhNode {
+    vec3 lowerA; uint childA;
+    vec3 upperA; uint countA;
+    vec3 lowerB; uint childB;
+    vec3 upperB; uint countB;
+};
+
+// A triangle that emits, for sampling the emissive triangles of a LIGHT_TRIANGLES light by power.
+struct PH_ALIGN16 EmissiveTriangle {
+    uint triangle; float cdf; float probability; float area;  // cdf: Σ probability up to and with this one
 };
 
 struct PH_ALIGN16 Light {
@@ -60,6 +91,10 @@ struct PH_ALIGN16 Light {
     float pickCdf; float pickProbability; uint profile; float falloffMean;
     // pickCdf: Σ pickProbability of this and earlier lights; profile: EMIT_*;
     // falloffMean: mean of the spot falloff over its cone, normalises the intensity
+    uint emitterFirst; uint emitterCount; float pad0; float pad1;
+    // LIGHT_TRIANGLES: its emissive triangles, emissiveTriangles[emitterFirst ..]. Directional:
+    // position and radius the sphere bounding the scene, axis the direction of travel, edgeU the
+    // irradiance E, power the flux E·πR² through the sphere's disk
 };
 
 // A bounding sphere of a specular object: the caustic pass emits photons towards these.
@@ -78,8 +113,8 @@ struct PH_ALIGN16 Camera {
 
 struct PH_ALIGN16 SceneInfo {
     uint sphereCount; uint planeCount; uint quadCount; uint triangleCount;
-    uint lightCount; uint targetCount; uint pad0; uint pad1;
-    vec3 background; float pad2;       // radiance of rays that leave the scene
+    uint lightCount; uint targetCount; uint bvhNodeCount; uint pad0;  // bvhNodeCount 0: no bounded primitives
+    vec3 background; float pad1;       // radiance of rays that leave the scene
 };
 
 struct PH_ALIGN16 GridParams {
@@ -118,9 +153,10 @@ struct PH_ALIGN16 Photon {
 
 // Where a pixel's eye path ended on a non-specular surface, and what it already knows.
 struct PH_ALIGN16 HitPoint {
-    vec3 position; uint material;  // material NONE: the path ended elsewhere, `direct` is all
-    vec3 weight; uint normal;      // path throughput from the camera; octahedral normal facing ωo
-    vec3 direct; uint outgoing;    // weighted emission, background and direct light; octahedral ωo
+    vec3 position; uint material;    // material NONE: the path ended elsewhere, `direct` is all
+    vec3 weight; uint normal;        // path throughput from the camera; octahedral shading normal facing ωo
+    vec3 direct; uint outgoing;      // weighted emission, background and direct light; octahedral ωo
+    vec3 albedo; uint geometricNormal;  // the albedo there (textured); octahedral geometric normal facing ωo
 };
 
 PH_NAMESPACE_END
@@ -131,11 +167,19 @@ PH_SIZE(Sphere, 32); PH_OFFSET(Sphere, radius, 12); PH_OFFSET(Sphere, material, 
 PH_SIZE(Plane, 32); PH_OFFSET(Plane, offset, 12); PH_OFFSET(Plane, material, 16);
 PH_SIZE(Quad, 64); PH_OFFSET(Quad, material, 12); PH_OFFSET(Quad, edgeU, 16); PH_OFFSET(Quad, area, 28);
 PH_OFFSET(Quad, edgeV, 32); PH_OFFSET(Quad, w, 48);
-PH_SIZE(Triangle, 48); PH_OFFSET(Triangle, material, 12); PH_OFFSET(Triangle, edge1, 16);
-PH_OFFSET(Triangle, edge2, 32);
-PH_SIZE(Material, 48); PH_OFFSET(Material, type, 12); PH_OFFSET(Material, specular, 16);
+PH_SIZE(Triangle, 48); PH_OFFSET(Triangle, material, 12); PH_OFFSET(Triangle, v1, 16);
+PH_OFFSET(Triangle, attributes, 28); PH_OFFSET(Triangle, v2, 32);
+PH_SIZE(TriangleAttributes, 48); PH_OFFSET(TriangleAttributes, flags, 12); PH_OFFSET(TriangleAttributes, s0, 16);
+PH_OFFSET(TriangleAttributes, t2, 36);
+PH_SIZE(Material, 64); PH_OFFSET(Material, type, 12); PH_OFFSET(Material, specular, 16);
 PH_OFFSET(Material, roughness, 28); PH_OFFSET(Material, emission, 32); PH_OFFSET(Material, ior, 44);
-PH_SIZE(Light, 96); PH_OFFSET(Light, type, 12); PH_OFFSET(Light, power, 16); PH_OFFSET(Light, radius, 28);
+PH_OFFSET(Material, albedoTexture, 48);
+PH_SIZE(Texture, 16); PH_OFFSET(Texture, wrap, 12);
+PH_SIZE(BvhNode, 64); PH_OFFSET(BvhNode, childA, 12); PH_OFFSET(BvhNode, upperA, 16); PH_OFFSET(BvhNode, countA, 28);
+PH_OFFSET(BvhNode, lowerB, 32); PH_OFFSET(BvhNode, childB, 44); PH_OFFSET(BvhNode, upperB, 48);
+PH_OFFSET(BvhNode, countB, 60);
+PH_SIZE(EmissiveTriangle, 16); PH_OFFSET(EmissiveTriangle, area, 12);
+PH_SIZE(Light, 112); PH_OFFSET(Light, emitterFirst, 96); PH_OFFSET(Light, emitterCount, 100); PH_OFFSET(Light, type, 12); PH_OFFSET(Light, power, 16); PH_OFFSET(Light, radius, 28);
 PH_OFFSET(Light, axis, 32); PH_OFFSET(Light, spotOuter, 44); PH_OFFSET(Light, edgeU, 48);
 PH_OFFSET(Light, spotInner, 60); PH_OFFSET(Light, edgeV, 64); PH_OFFSET(Light, area, 76);
 PH_OFFSET(Light, pickCdf, 80); PH_OFFSET(Light, pickProbability, 84); PH_OFFSET(Light, profile, 88);
@@ -144,7 +188,8 @@ PH_SIZE(CausticTarget, 16); PH_OFFSET(CausticTarget, radius, 12);
 PH_SIZE(Camera, 64); PH_OFFSET(Camera, lensRadius, 12); PH_OFFSET(Camera, forward, 16);
 PH_OFFSET(Camera, focusDistance, 28); PH_OFFSET(Camera, right, 32); PH_OFFSET(Camera, tanHalfFovY, 44);
 PH_OFFSET(Camera, up, 48); PH_OFFSET(Camera, aspect, 60);
-PH_SIZE(SceneInfo, 48); PH_OFFSET(SceneInfo, lightCount, 16); PH_OFFSET(SceneInfo, background, 32);
+PH_SIZE(SceneInfo, 48); PH_OFFSET(SceneInfo, lightCount, 16); PH_OFFSET(SceneInfo, bvhNodeCount, 24);
+PH_OFFSET(SceneInfo, background, 32);
 PH_SIZE(GridParams, 48); PH_OFFSET(GridParams, cellSize, 12); PH_OFFSET(GridParams, resolution, 16);
 PH_OFFSET(GridParams, cellOffset, 28); PH_OFFSET(GridParams, photonOffset, 32);
 PH_OFFSET(GridParams, radius, 40); PH_OFFSET(GridParams, keyBits, 44);
@@ -154,8 +199,9 @@ PH_OFFSET(FrameParams, globalPaths, 224); PH_OFFSET(FrameParams, estimator, 240)
 PH_OFFSET(FrameParams, gatherRays, 256); PH_OFFSET(FrameParams, photonIdBits, 272);
 PH_OFFSET(FrameParams, gatherBudget, 280);
 PH_SIZE(Photon, 32); PH_OFFSET(Photon, incoming, 12); PH_OFFSET(Photon, power, 16); PH_OFFSET(Photon, id, 28);
-PH_SIZE(HitPoint, 48); PH_OFFSET(HitPoint, material, 12); PH_OFFSET(HitPoint, weight, 16);
+PH_SIZE(HitPoint, 64); PH_OFFSET(HitPoint, material, 12); PH_OFFSET(HitPoint, weight, 16);
 PH_OFFSET(HitPoint, normal, 28); PH_OFFSET(HitPoint, direct, 32); PH_OFFSET(HitPoint, outgoing, 44);
+PH_OFFSET(HitPoint, albedo, 48); PH_OFFSET(HitPoint, geometricNormal, 60);
 }  // namespace photon
 #endif
 

@@ -67,11 +67,43 @@ PH_FN vec3 pointIntensity(PH_IN(Light) light, vec3 dir) {
     return light.power * INV_FOUR_PI;
 }
 
-// Radiance leaving an area light's surface (Lambertian emitter).
-PH_FN vec3 areaLightRadiance(PH_IN(Light) light) { return light.power * (INV_PI / light.area); }
+PH_FN bool isAreaLight(PH_IN(Light) light) {
+    return light.type == LIGHT_SPHERE || light.type == LIGHT_QUAD || light.type == LIGHT_TRIANGLES;
+}
 
-// A point on an area light, uniform by area, and the outward normal there.
-PH_FN void sampleAreaLight(PH_IN(Light) light, float u1, float u2, PH_OUT(vec3) p, PH_OUT(vec3) n) {
+// The emissive triangle of a LIGHT_TRIANGLES light that u ∈ [0, 1) picks, in proportion to power
+// (a binary search of their cdf; the last one's is 1).
+PH_FN uint pickEmitter(BUF_PARAM PH_IN(Light) light, float u) {
+    uint lo = light.emitterFirst;
+    uint hi = light.emitterFirst + light.emitterCount - 1u;
+    while (lo < hi) {
+        uint mid = (lo + hi) / 2u;
+        if (u < BUF(emissiveTriangles)[mid].cdf) {
+            hi = mid;
+        } else {
+            lo = mid + 1u;
+        }
+    }
+    return lo;
+}
+
+// A point on an area light and the light's front normal there. Sphere and quad lights: uniform by
+// area, radiance Φ / (π · area). Emissive triangles: one picked by power (u0), then uniform on it;
+// its material's emission. areaPdf is the density of the point per unit area of the light.
+PH_FN void sampleAreaLight(BUF_PARAM PH_IN(Light) light, float u0, float u1, float u2, PH_OUT(vec3) p, PH_OUT(vec3) n,
+                           PH_OUT(vec3) radiance, PH_OUT(float) areaPdf) {
+    if (light.type == LIGHT_TRIANGLES) {
+        EmissiveTriangle e = BUF(emissiveTriangles)[pickEmitter(BUF_ARG light, u0)];
+        Triangle tri = BUF(triangles)[e.triangle];
+        float su = sqrt(u1);
+        p = tri.v0 * (1.0f - su) + tri.v1 * (su * (1.0f - u2)) + tri.v2 * (su * u2);
+        n = unitVector(cross(tri.v1 - tri.v0, tri.v2 - tri.v0));
+        radiance = BUF(materials)[tri.material].emission;
+        areaPdf = e.probability / e.area;
+        return;
+    }
+    radiance = light.power * (INV_PI / light.area);
+    areaPdf = 1.0f / light.area;
     if (light.type == LIGHT_SPHERE) {
         n = sampleUniformSphere(u1, u2);
         p = light.position + light.radius * n;
@@ -81,10 +113,15 @@ PH_FN void sampleAreaLight(PH_IN(Light) light, float u1, float u2, PH_OUT(vec3) 
     }
 }
 
-PH_FN bool isAreaLight(PH_IN(Light) light) { return light.type == LIGHT_SPHERE || light.type == LIGHT_QUAD; }
+// The start of a directional light's photon through point (x, y) of the unit disk: on the disk of
+// the scene's bounding sphere, facing its direction of travel, behind everything in the scene.
+PH_FN vec3 directionalOrigin(PH_IN(Light) light, vec2 q) {
+    return light.position + localToWorld(vec3(q.x, q.y, -1.001f), light.axis) * light.radius;
+}
 
-// Photon of the global pass, drawn from the light's own emission distribution. Four draws.
-PH_FN PhotonEmission emitPhoton(PH_IN(Light) light, PH_INOUT(Rng) rng) {
+// Photon of the global pass, drawn from the light's own emission distribution. Four draws, five
+// for emissive triangles.
+PH_FN PhotonEmission emitPhoton(BUF_PARAM PH_IN(Light) light, PH_INOUT(Rng) rng) {
     float u1 = rngNext(rng);
     float u2 = rngNext(rng);
     float u3 = rngNext(rng);
@@ -102,12 +139,20 @@ PH_FN PhotonEmission emitPhoton(PH_IN(Light) light, PH_INOUT(Rng) rng) {
         float x = u1 * light.spotOuter;
         e.direction = directionAroundAxis(light.axis, x, u2);
         e.power = light.power * (spotFalloff(light, x) / light.falloffMean);
+    } else if (light.type == LIGHT_DIRECTIONAL) {
+        e.origin = directionalOrigin(light, sampleUniformDisk(u1, u2));
+        e.direction = light.axis;
     } else {
+        float u0 = light.type == LIGHT_TRIANGLES ? rngNext(rng) : 0.0f;
         vec3 n;
         vec3 p;
-        sampleAreaLight(light, u3, u4, p, n);
+        vec3 radiance;
+        float areaPdf;
+        sampleAreaLight(BUF_ARG light, u0, u3, u4, p, n, radiance, areaPdf);
         e.direction = localToWorld(sampleCosineHemisphere(u1, u2), n);
         e.origin = offsetRayOrigin(p, n, n);
+        // A Lambertian emitter sends πL per unit area; over the area density that is the flux.
+        e.power = radiance * (PI / areaPdf);
     }
     return e;
 }
@@ -161,10 +206,63 @@ PH_FN Cone causticCone(vec3 origin, PH_IN(CausticTarget) t, bool clipped, PH_IN(
     return c;
 }
 
+// Photon of the caustic pass of a directional light: its start is drawn from the mixture of the
+// targets' disks as the light sees them (projected along its direction, each weighted by its
+// area), and its power is irradiance / mixture density, which keeps it unbiased. Three draws.
+PH_FN PhotonEmission emitDirectionalCausticPhoton(BUF_PARAM PH_IN(Light) light, PH_INOUT(Rng) rng) {
+    float u1 = rngNext(rng);
+    float u2 = rngNext(rng);
+    float u3 = rngNext(rng);
+    PhotonEmission e;
+    e.direction = light.axis;
+    e.origin = light.position;
+    e.power = vec3(0.0f);
+    uint count = BUF(params).scene.targetCount;
+    float total = 0.0f;
+    for (uint k = 0u; k < count; ++k) {
+        total += BUF(targets)[k].radius * BUF(targets)[k].radius;
+    }
+    if (!(total > 0.0f)) {
+        return e;
+    }
+    float pick = u1 * total;
+    uint chosen = count - 1u;
+    for (uint k = 0u; k < count; ++k) {
+        float w = BUF(targets)[k].radius * BUF(targets)[k].radius;
+        if (pick < w) {
+            chosen = k;
+            break;
+        }
+        pick -= w;
+    }
+    // The target's centre projected onto the light's start disk, in its unit coordinates.
+    CausticTarget t = BUF(targets)[chosen];
+    vec3 rel = (t.center - light.position) * (1.0f / light.radius);
+    vec3 axisX = localToWorld(vec3(1.0f, 0.0f, 0.0f), light.axis);
+    vec3 axisY = localToWorld(vec3(0.0f, 1.0f, 0.0f), light.axis);
+    vec2 q = vec2(dot(rel, axisX), dot(rel, axisY)) + sampleUniformDisk(u2, u3) * (t.radius / light.radius);
+    float pdf = 0.0f;  // per unit area of the start disk, in scene units
+    for (uint k = 0u; k < count; ++k) {
+        CausticTarget tk = BUF(targets)[k];
+        vec3 rk = (tk.center - light.position) * (1.0f / light.radius);
+        vec2 d = q - vec2(dot(rk, axisX), dot(rk, axisY));
+        float rr = tk.radius / light.radius;
+        if (k == chosen || dot(d, d) <= rr * rr) {
+            pdf += (tk.radius * tk.radius / total) / (PI * tk.radius * tk.radius);
+        }
+    }
+    e.origin = directionalOrigin(light, q);
+    e.power = light.edgeU / pdf;  // irradiance / density
+    return e;
+}
+
 // Photon of the caustic pass: its direction is drawn from the mixture of cones towards the
 // specular objects, and its power is intensity / mixture density, which keeps it unbiased.
 // Five draws.
 PH_FN PhotonEmission emitCausticPhoton(BUF_PARAM PH_IN(Light) light, PH_INOUT(Rng) rng) {
+    if (light.type == LIGHT_DIRECTIONAL) {
+        return emitDirectionalCausticPhoton(BUF_ARG light, rng);
+    }
     float u1 = rngNext(rng);
     float u2 = rngNext(rng);
     float u3 = rngNext(rng);
@@ -175,9 +273,12 @@ PH_FN PhotonEmission emitCausticPhoton(BUF_PARAM PH_IN(Light) light, PH_INOUT(Rn
     e.origin = light.position;
     e.direction = n;
     e.power = vec3(0.0f);
+    vec3 radiance = vec3(0.0f);
+    float areaPdf = 1.0f;
     if (isAreaLight(light)) {
+        float u0 = light.type == LIGHT_TRIANGLES ? rngNext(rng) : 0.0f;
         vec3 p;
-        sampleAreaLight(light, u1, u2, p, n);
+        sampleAreaLight(BUF_ARG light, u0, u1, u2, p, n, radiance, areaPdf);
         e.origin = offsetRayOrigin(p, n, n);
     }
     Cone emitter;
@@ -220,7 +321,8 @@ PH_FN PhotonEmission emitCausticPhoton(BUF_PARAM PH_IN(Light) light, PH_INOUT(Rn
     }
     vec3 intensity;
     if (isAreaLight(light)) {
-        intensity = light.power * (max(0.0f, dot(e.direction, n)) * INV_PI);
+        // The radiant intensity of the light's whole area as seen from this point: L cosθ / areaPdf.
+        intensity = radiance * (max(0.0f, dot(e.direction, n)) / areaPdf);
     } else {
         intensity = pointIntensity(light, e.direction);
     }
@@ -228,8 +330,8 @@ PH_FN PhotonEmission emitCausticPhoton(BUF_PARAM PH_IN(Light) light, PH_INOUT(Rn
     return e;
 }
 
-// Direct-light sample towards `light` from x. Two draws.
-PH_FN LightSample sampleDirectLight(PH_IN(Light) light, vec3 x, PH_INOUT(Rng) rng) {
+// Direct-light sample towards `light` from x. Two draws, three for emissive triangles.
+PH_FN LightSample sampleDirectLight(BUF_PARAM PH_IN(Light) light, vec3 x, PH_INOUT(Rng) rng) {
     float u1 = rngNext(rng);
     float u2 = rngNext(rng);
     LightSample ls;
@@ -241,6 +343,11 @@ PH_FN LightSample sampleDirectLight(PH_IN(Light) light, vec3 x, PH_INOUT(Rng) rn
         float dist2 = dot(d, d);
         ls.direction = d * (1.0f / sqrt(dist2));
         ls.radiance = pointIntensity(light, -ls.direction) / dist2;
+    } else if (light.type == LIGHT_DIRECTIONAL) {
+        // Irradiance E from one direction; the shadow ray runs out of the bounding sphere.
+        ls.direction = -light.axis;
+        ls.point = x + ls.direction * (2.0f * (length(x - light.position) + light.radius));
+        ls.radiance = light.edgeU;
     } else if (light.type == LIGHT_SPHERE) {
         // Uniform over the cone that the sphere subtends: density 1 / (2π x).
         float coneX = sphereConeX(x, light.position, light.radius);
@@ -251,16 +358,20 @@ PH_FN LightSample sampleDirectLight(PH_IN(Light) light, vec3 x, PH_INOUT(Rng) rn
         ls.direction = sampleUniformCone(axis, coneX, u1, u2);
         float t = intersectSphere(makeRay(x, ls.direction, FLOAT_MAX), light.position, light.radius, FLOAT_MAX);
         ls.point = x + ls.direction * (t < FLOAT_MAX ? t : dot(light.position - x, ls.direction));
-        ls.radiance = areaLightRadiance(light) * (TWO_PI * coneX);
+        ls.radiance = light.power * (INV_PI / light.area) * (TWO_PI * coneX);
     } else {
-        // Uniform by area: density d² / (cosθ_light · area) in solid angle.
-        ls.point = light.position + u1 * light.edgeU + u2 * light.edgeV;
+        // Quads and emissive triangles, by area: density d² / (cosθ_light · area) in solid angle.
+        float u0 = light.type == LIGHT_TRIANGLES ? rngNext(rng) : 0.0f;
+        vec3 n;
+        vec3 radiance;
+        float areaPdf;
+        sampleAreaLight(BUF_ARG light, u0, u1, u2, ls.point, n, radiance, areaPdf);
         vec3 d = ls.point - x;
         float dist2 = dot(d, d);
         ls.direction = d * (1.0f / sqrt(dist2));
-        float cosLight = -dot(ls.direction, light.axis);
-        if (cosLight > 0.0f) {
-            ls.radiance = areaLightRadiance(light) * (cosLight * light.area / dist2);
+        float cosLight = -dot(ls.direction, n);
+        if (cosLight > 0.0f && dist2 > 0.0f) {
+            ls.radiance = radiance * (cosLight / (areaPdf * dist2));
         }
     }
     return ls;

@@ -4,7 +4,7 @@
 //   eye paths end there too (a mirror coat may continue them instead);
 //   mirrors and glass are caustic casters: bounded ones are the targets of the caustic pass;
 //   a mirror coat over a stored base (reflective) makes caustic paths but is not a target;
-//   emitters radiate and absorb.
+//   emitters radiate and absorb; any other material may radiate too (an emissive glTF surface).
 #ifndef PHOTON_SHARED_MATERIAL_H
 #define PHOTON_SHARED_MATERIAL_H
 
@@ -22,17 +22,18 @@ PH_CONST uint SURFACE_LAMBERTIAN = 32u;      // what is stored reflects as albed
                                              // out of their sums
 
 PH_FN uint materialFlags(PH_IN(Material) m) {
+    uint emits = isBlack(m.emission) ? 0u : SURFACE_EMITS;  // any material may also emit (glTF, MTL Ke)
     if (m.type == MATERIAL_DIFFUSE) {
-        return SURFACE_STORES_PHOTONS | SURFACE_ENDS_EYE_PATHS | SURFACE_LAMBERTIAN;
+        return emits | SURFACE_STORES_PHOTONS | SURFACE_ENDS_EYE_PATHS | SURFACE_LAMBERTIAN;
     }
     if (m.type == MATERIAL_GLOSSY) {
-        return SURFACE_STORES_PHOTONS | SURFACE_ENDS_EYE_PATHS;
+        return emits | SURFACE_STORES_PHOTONS | SURFACE_ENDS_EYE_PATHS;
     }
     if (m.type == MATERIAL_REFLECTIVE) {
-        return SURFACE_STORES_PHOTONS | SURFACE_ENDS_EYE_PATHS | SURFACE_SPECULAR_COAT | SURFACE_LAMBERTIAN;
+        return emits | SURFACE_STORES_PHOTONS | SURFACE_ENDS_EYE_PATHS | SURFACE_SPECULAR_COAT | SURFACE_LAMBERTIAN;
     }
     if (m.type == MATERIAL_MIRROR || m.type == MATERIAL_GLASS) {
-        return SURFACE_CAUSTIC_CASTER;
+        return emits | SURFACE_CAUSTIC_CASTER;
     }
     if (m.type == MATERIAL_EMITTER) {
         return SURFACE_EMITS;

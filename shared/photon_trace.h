@@ -23,6 +23,7 @@
 
 #include "bsdf.h"
 #include "lights.h"
+#include "surface.h"
 
 PH_NAMESPACE_BEGIN
 
@@ -51,7 +52,7 @@ PH_FN PhotonPath startPhotonPath(BUF_PARAM uint index) {
     if (causticPass) {
         e = emitCausticPhoton(BUF_ARG light, path.rng);
     } else {
-        e = emitPhoton(light, path.rng);
+        e = emitPhoton(BUF_ARG light, path.rng);
     }
     float paths = float(causticPass ? BUF(params).causticPaths : BUF(params).globalPaths);
     path.origin = e.origin;
@@ -73,7 +74,8 @@ PH_FN uint photonBounce(BUF_PARAM PH_INOUT(PhotonPath) path, PH_OUT(Photon) phot
         path.flags = 0u;
         return 0u;
     }
-    Material m = BUF(materials)[hit.material];
+    SurfacePoint sp = surfaceAt(BUF_ARG hit);
+    Material m = sp.material;
     bool causticPass = (path.flags & PATH_CAUSTIC_PASS) != 0u;
     uint surface = materialFlags(m);
     if (path.depth == 0u && (surface & SURFACE_CAUSTIC_CASTER) != 0u && hit.kind != PRIM_PLANE) {
@@ -107,7 +109,7 @@ PH_FN uint photonBounce(BUF_PARAM PH_INOUT(PhotonPath) path, PH_OUT(Photon) phot
         path.flags = 0u;
         return store;
     }
-    BsdfSample bs = sampleBsdf(m, -path.direction, hit.normal, path.rng);
+    BsdfSample bs = sampleBsdf(m, -path.direction, sp.geometricNormal, sp.shadingNormal, path.rng);
     float survival = min(1.0f, maxComponent(bs.weight));
     // The caustic pass ends where its path stops being specular.
     bool leavesCausticPass = causticPass && bs.lobe != LOBE_SPECULAR;

@@ -47,16 +47,60 @@ TEST(Intersect, QuadInsideOutsideAndEdges) {
     EXPECT_FLOAT_EQ(s.quads[0].area, 2.0f);
 }
 
+float hitTriangle(const Ray& r, const Triangle& t) {
+    float b1;
+    float b2;
+    return intersectTriangle(makeRayFrame(r), t, FLOAT_MAX, b1, b2);
+}
+
 TEST(Intersect, TriangleEdgesAndDegenerate) {
     Triangle t{};
     t.v0 = vec3(0);
-    t.edge1 = vec3(1, 0, 0);
-    t.edge2 = vec3(0, 1, 0);
-    EXPECT_FLOAT_EQ(intersectTriangle(ray(vec3(0.25f, 0.25f, 1), vec3(0, 0, -1)), t, FLOAT_MAX), 1.0f);
-    EXPECT_EQ(intersectTriangle(ray(vec3(0.6f, 0.6f, 1), vec3(0, 0, -1)), t, FLOAT_MAX), FLOAT_MAX);
-    EXPECT_EQ(intersectTriangle(ray(vec3(0.25f, 0.25f, 1), vec3(1, 0, 0)), t, FLOAT_MAX), FLOAT_MAX);  // parallel
-    t.edge2 = vec3(2, 0, 0);  // degenerate
-    EXPECT_EQ(intersectTriangle(ray(vec3(0.25f, 0.0f, 1), vec3(0, 0, -1)), t, FLOAT_MAX), FLOAT_MAX);
+    t.v1 = vec3(1, 0, 0);
+    t.v2 = vec3(0, 1, 0);
+    EXPECT_FLOAT_EQ(hitTriangle(ray(vec3(0.25f, 0.25f, 1), vec3(0, 0, -1)), t), 1.0f);
+    EXPECT_FLOAT_EQ(hitTriangle(ray(vec3(0.25f, 0.25f, -1), vec3(0, 0, 1)), t), 1.0f);  // two-sided
+    EXPECT_EQ(hitTriangle(ray(vec3(0.6f, 0.6f, 1), vec3(0, 0, -1)), t), FLOAT_MAX);
+    EXPECT_EQ(hitTriangle(ray(vec3(0.25f, 0.25f, 1), vec3(1, 0, 0)), t), FLOAT_MAX);  // parallel
+    float b1;
+    float b2;
+    intersectTriangle(makeRayFrame(ray(vec3(0.25f, 0.5f, 1), vec3(0, 0, -1))), t, FLOAT_MAX, b1, b2);
+    EXPECT_FLOAT_EQ(b1, 0.25f);  // the weights of v1 and v2
+    EXPECT_FLOAT_EQ(b2, 0.5f);
+    t.v2 = vec3(2, 0, 0);  // degenerate
+    EXPECT_EQ(hitTriangle(ray(vec3(0.25f, 0.0f, 1), vec3(0, 0, -1)), t), FLOAT_MAX);
+}
+
+// Watertight: rays through the shared edge, and the shared vertex, of a fan of triangles hit one
+// of them, never neither (Woop et al. 2013).
+TEST(Intersect, TrianglesSharingAnEdgeLeaveNoGap) {
+    Rng rng = rngCreate(3, 0, 0, 0);
+    vec3 centre(0.3f, -0.2f, 0.1f);
+    const int fan = 7;
+    Triangle tris[fan];
+    for (int i = 0; i < fan; ++i) {
+        float a0 = 6.2831853f * float(i) / fan;
+        float a1 = 6.2831853f * float(i + 1) / fan;
+        tris[i].v0 = centre;
+        tris[i].v1 = centre + vec3(std::cos(a0), std::sin(a0), 0.0f);
+        tris[i].v2 = centre + vec3(std::cos(a1), std::sin(a1), 0.0f);
+    }
+    int gaps = 0;
+    for (int k = 0; k < 20000; ++k) {
+        // Towards a point on an edge or at the centre, from a random origin above or below.
+        int edge = k % fan;
+        float along = k % 10 == 0 ? 0.0f : rngNext(rng);
+        float a = 6.2831853f * float(edge) / fan;
+        vec3 target = centre + along * vec3(std::cos(a), std::sin(a), 0.0f);
+        vec3 origin = target + vec3(rngNext(rng) - 0.5f, rngNext(rng) - 0.5f, k % 2 ? 1.0f : -1.0f) * 3.0f;
+        Ray r = ray(origin, unitVector(target - origin));
+        bool hit = false;
+        for (const Triangle& t : tris) {
+            hit = hit || hitTriangle(r, t) < FLOAT_MAX;
+        }
+        gaps += hit ? 0 : 1;
+    }
+    EXPECT_EQ(gaps, 0);
 }
 
 TEST(Intersect, ClosestHitAcrossPrimitiveKinds) {

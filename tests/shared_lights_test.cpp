@@ -40,7 +40,7 @@ vec3 fluxHittingSpheres(const test::SceneBindings& sb) {
     Rng rng = rngCreate(0u, 0u, 6u, STREAM_PHOTON);
     dvec3 sum(0.0);
     for (int i = 0; i < kRays; ++i) {
-        PhotonEmission e = emitPhoton(sb.scene.lights[0], rng);
+        PhotonEmission e = emitPhoton(sb.bindings, sb.scene.lights[0], rng);
         Ray r = makeRay(e.origin, e.direction, FLOAT_MAX);
         for (const Sphere& s : sb.scene.spheres) {
             if (intersectSphere(r, s.center, s.radius, FLOAT_MAX) < FLOAT_MAX) {
@@ -57,12 +57,12 @@ TEST(Emission, GlobalPassCarriesTheLightsFlux) {
     s.addSpotLight(vec3(0), vec3(0, -1, 0), vec3(10.0f), 30.0f, 20.0f);
     s.addHemisphereLight(vec3(0), vec3(0, 1, 0), vec3(10.0f));
     s.addQuadLight(vec3(0), vec3(1, 0, 0), vec3(0, 0, 1), vec3(10.0f));
-    s.finalize();
-    for (const Light& light : s.lights) {
+    test::SceneBindings sb(s);
+    for (const Light& light : sb.scene.lights) {
         Rng rng = rngCreate(0u, 0u, 1u, STREAM_PHOTON);
         double sum = 0.0;
         for (int i = 0; i < kN; ++i) {
-            sum += emitPhoton(light, rng).power.x;
+            sum += emitPhoton(sb.bindings, light, rng).power.x;
         }
         EXPECT_NEAR(sum / kN, 10.0, 0.05) << "light type " << light.type;
     }
@@ -135,7 +135,7 @@ TEST(DirectLight, SphereLightMatchesItsFluxAtADistance) {
     Rng rng = rngCreate(0u, 0u, 2u, STREAM_CAMERA);
     double e = 0.0;
     for (int i = 0; i < kN / 4; ++i) {
-        LightSample ls = sampleDirectLight(sb.scene.lights[0], vec3(0), rng);
+        LightSample ls = sampleDirectLight(sb.bindings, sb.scene.lights[0], vec3(0), rng);
         e += ls.radiance.x * std::max(0.0f, ls.direction.y);
     }
     e /= kN / 4;
@@ -179,7 +179,7 @@ TEST(DirectLight, AreaLightsDoNotShadowThemselvesAtGrazingAngles) {
         for (float z : {-2.0f, -8.0f, -20.0f, -60.0f}) {
             Rng rng = rngCreate(1u, 0u, 1u, STREAM_CAMERA);
             vec3 x(0.5f, 0.0f, z);
-            vec3 lit = directLight(sb.bindings, x, vec3(0, 1, 0), vec3(0, 1, 0), sb.scene.materials[floor], rng);
+            vec3 lit = directLight(sb.bindings, x, vec3(0, 1, 0), vec3(0, 1, 0), vec3(0, 1, 0), sb.scene.materials[floor], rng);
             EXPECT_GT(lit.x, 0.0f) << (kind == 0 ? "quad" : "sphere") << " light: floor at z = " << z << " sees none";
         }
     }

@@ -183,7 +183,7 @@ TEST(Bsdf, GlossyConservesEnergyAndSamplingMatchesEval) {
         double uniform = 0.0;
         constexpr int kN = 400000;
         for (int i = 0; i < kN; ++i) {
-            BsdfSample bs = sampleBsdf(m, wo, n, rng);
+            BsdfSample bs = sampleBsdf(m, wo, n, n, rng);
             sampled += bs.weight.x;
             float u1 = rngNext(rng);
             float u2 = rngNext(rng);
