@@ -21,6 +21,7 @@
 #include "error.h"
 #include "input_file.h"
 #include "json_node.h"
+#include "model_loader.h"
 #include "setting_specs.h"
 #include "shared/constants.h"
 
@@ -123,7 +124,85 @@ std::uint32_t materialOf(const Scene& scene, const Node& object) {
     return material;
 }
 
-void readObject(Scene& scene, const Node& node) {
+// A mesh object's "transform": scale (a number or a vec3), then rotate [degrees, axis], then
+// translate; or a row-major 4×4 "matrix".
+glm::mat4 readTransform(const Node& node) {
+    node.allowKeys({"scale", "rotate", "translate", "matrix"});
+    if (node.has("matrix")) {
+        if (node.has("scale") || node.has("rotate") || node.has("translate")) {
+            node["matrix"].fail("a matrix replaces scale, rotate and translate: give one or the others");
+        }
+        std::vector<Node> values = node["matrix"].elements();
+        if (values.size() != 16) {
+            node["matrix"].fail("expected 16 numbers, row by row");
+        }
+        glm::mat4 m;
+        for (int row = 0; row < 4; ++row) {
+            for (int column = 0; column < 4; ++column) {
+                m[column][row] = values[std::size_t(4 * row + column)].number();
+            }
+        }
+        if (m[0][3] != 0.0f || m[1][3] != 0.0f || m[2][3] != 0.0f || m[3][3] != 1.0f) {
+            node["matrix"].fail("the last row must be [0, 0, 0, 1] (an affine transform)");
+        }
+        float det = glm::determinant(glm::mat3(m));
+        if (!(std::abs(det) > 1e-30f) || !std::isfinite(det)) {
+            node["matrix"].fail("not invertible (its 3x3 part has determinant " + formatNumber(det) + ")");
+        }
+        return m;
+    }
+    glm::vec3 scale(1.0f);
+    if (node.has("scale")) {
+        Node n = node["scale"];
+        scale = n.isNumber() ? glm::vec3(n.number()) : n.triple("expected a number or an array of 3 numbers", kFinite);
+        if (scale.x == 0.0f || scale.y == 0.0f || scale.z == 0.0f) {
+            n.fail("must not be zero on any axis");
+        }
+    }
+    float degrees = 0.0f;
+    glm::vec3 axis(0.0f, 1.0f, 0.0f);
+    if (node.has("rotate")) {
+        Node r = node["rotate"];
+        std::vector<Node> v = r.elements();
+        if (v.size() != 4) {
+            r.fail("expected [degrees, axis x, axis y, axis z]");
+        }
+        degrees = v[0].number();
+        axis = glm::vec3(v[1].number(), v[2].number(), v[3].number());
+        r.checkNormalizable(axis, "the axis must be non-zero");
+    }
+    glm::vec3 translate = node.has("translate") ? node["translate"].vec3() : glm::vec3(0.0f);
+    return composeTransform(scale, degrees, axis, translate);
+}
+
+// A model file as an object: its path relative to the scene file, its file's materials or one of
+// the scene's, and a transform.
+void readMesh(Scene& scene, const Node& node, const std::string& folder) {
+    node.allowKeys({"type", "file", "material", "transform"});
+    ModelOptions options;
+    if (node.has("material")) {
+        options.material = materialOf(scene, node);
+    }
+    if (node.has("transform")) {
+        options.transform = readTransform(node["transform"]);
+    }
+    Node file = node["file"];
+    const std::string& name = file.string();
+    if (name.empty()) {
+        file.fail("must not be empty");
+    }
+    if (!isModelFile(name)) {
+        file.fail("'" + name + "' is not a model file Photon reads (.obj, .gltf, .glb)");
+    }
+    std::string path = !name.empty() && name[0] == '/' ? name : folder + name;
+    try {
+        addModelFile(scene, path, options);
+    } catch (const InputError& e) {
+        file.fail(e.what());
+    }
+}
+
+void readObject(Scene& scene, const Node& node, const std::string& folder) {
     const std::string& type = node["type"].string();
     if (type == "sphere") {
         node.allowKeys({"type", "material", "center", "radius"});
@@ -156,6 +235,8 @@ void readObject(Scene& scene, const Node& node) {
         glm::vec3 c = v[2].vec3();
         vertices.checkSpan(b - a, c - a, "degenerate triangle: the vertices are collinear or coincide");
         scene.addTriangle(a, b, c, material);
+    } else if (type == "mesh") {
+        readMesh(scene, node, folder);
     } else if (type == "box") {
         node.allowKeys({"type", "material", "min", "max"});
         std::uint32_t material = materialOf(scene, node);
@@ -177,7 +258,7 @@ void readObject(Scene& scene, const Node& node) {
             scene.addQuad(far, edge1, edge2, material);
         }
     } else {
-        node["type"].fail("unknown object type '" + type + "' (expected sphere|plane|quad|triangle|box)");
+        node["type"].fail("unknown object type '" + type + "' (expected sphere|plane|quad|triangle|box|mesh)");
     }
 }
 
@@ -285,7 +366,7 @@ void readRender(const Node& node, RenderSettings& s) {
 
 }  // namespace
 
-Scene loadSceneJson(const std::string& text, const std::string& sourceName) {
+Scene loadSceneJson(const std::string& text, const std::string& sourceName, const std::string& folder) {
     const json document = parseJson(text, sourceName);
     const Node root(document, "", sourceName);
     root.allowKeys({"name", "camera", "background", "materials", "objects", "lights", "render"});
@@ -300,7 +381,7 @@ Scene loadSceneJson(const std::string& text, const std::string& sourceName) {
     }
     readMaterials(scene, root["materials"]);
     for (const Node& object : root["objects"].elements()) {
-        readObject(scene, object);
+        readObject(scene, object, folder);
     }
     readLights(scene, root["lights"]);
     if (root.has("render")) {
@@ -310,7 +391,12 @@ Scene loadSceneJson(const std::string& text, const std::string& sourceName) {
     return scene;
 }
 
-Scene loadSceneFile(const std::string& path) { return loadSceneJson(readInputFile(path, kSceneFileLimit, "scene file"), path); }
+Scene loadSceneFile(const std::string& path) {
+    if (isModelFile(path)) {
+        return loadModelScene(path);
+    }
+    return loadSceneJson(readInputFile(path, kSceneFileLimit, "scene file"), path, folderOf(path));
+}
 
 Scene defaultScene() { return loadSceneJson(kEmbeddedCornellJson, "<embedded cornell.json>"); }
 

@@ -8,11 +8,13 @@
 
 namespace photon {
 
-// Reads a scene file; throws InputError("<path>: <json pointer>: <reason>") on any problem.
+// Reads a scene file, or a model file (.obj, .gltf, .glb) as a scene of its own; throws
+// InputError("<path>: <json pointer>: <reason>") on any problem.
 Scene loadSceneFile(const std::string& path);
 
-// Same from text; sourceName is used in messages in place of the path.
-Scene loadSceneJson(const std::string& text, const std::string& sourceName);
+// Same from text; sourceName is used in messages in place of the path, and model files of mesh
+// objects are found relative to `folder` (with its trailing '/', or "" for the working folder).
+Scene loadSceneJson(const std::string& text, const std::string& sourceName, const std::string& folder = "");
 
 // The default scene: the Cornell box embedded in the binary.
 Scene defaultScene();

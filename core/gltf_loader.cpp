@@ -1,0 +1,558 @@
+// glTF 2.0, .gltf (external or data-URI buffers) and .glb (tinygltf): the default scene's node
+// hierarchy with its transforms, indexed triangles (lists, strips, fans), normals, texture
+// coordinates, base-colour textures, cameras and KHR_lights_punctual. tinygltf parses the JSON and
+// gathers the buffers and images; every accessor, index and node is checked here.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <set>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <tiny_gltf.h>
+
+#include "error.h"
+#include "model_loader.h"
+#include "texture_loader.h"
+
+namespace photon {
+namespace {
+
+constexpr double kWattsPerLumen = 1.0 / 683.0;  // glTF's photometric units taken at 555 nm
+
+const char* const kSupportedRequired[] = {"KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior",
+                                          "KHR_materials_emissive_strength"};
+
+struct Loader {
+    Scene& scene;
+    const std::string& path;
+    const ModelOptions& options;
+    tinygltf::Model model;
+    std::vector<std::uint32_t> materials;  // scene material of each glTF material, NONE until used
+    std::vector<std::uint32_t> textures;   // scene texture of each glTF texture, NONE until used
+    std::uint32_t defaultMaterial = NONE;
+    ModelExtras extras;
+
+    [[noreturn]] void fail(const std::string& where, const std::string& reason) const {
+        throw InputError(path + ": " + where + ": " + reason);
+    }
+
+    static std::string at(const char* array, std::size_t index) { return std::string("/") + array + "/" + std::to_string(index); }
+
+    // ---- Accessors -------------------------------------------------------------------------------
+
+    // The bytes of element i of an accessor, after checking that all `count` elements lie within
+    // its buffer view and buffer.
+    struct View {
+        const unsigned char* data = nullptr;
+        std::size_t stride = 0;
+        std::size_t count = 0;
+        int componentType = 0;
+        int components = 0;
+        bool normalized = false;
+    };
+
+    View view(int index, const std::string& where) const {
+        if (index < 0 || std::size_t(index) >= model.accessors.size()) {
+            fail(where, "accessor " + std::to_string(index) + " does not exist");
+        }
+        const tinygltf::Accessor& a = model.accessors[std::size_t(index)];
+        std::string here = at("accessors", std::size_t(index));
+        if (a.sparse.isSparse) {
+            fail(here, "sparse accessors are not supported");
+        }
+        if (a.bufferView < 0 || std::size_t(a.bufferView) >= model.bufferViews.size()) {
+            fail(here, "no buffer view (bufferView " + std::to_string(a.bufferView) + ")");
+        }
+        const tinygltf::BufferView& bv = model.bufferViews[std::size_t(a.bufferView)];
+        if (bv.buffer < 0 || std::size_t(bv.buffer) >= model.buffers.size()) {
+            fail(at("bufferViews", std::size_t(a.bufferView)), "buffer " + std::to_string(bv.buffer) + " does not exist");
+        }
+        const tinygltf::Buffer& buffer = model.buffers[std::size_t(bv.buffer)];
+        int componentSize = tinygltf::GetComponentSizeInBytes(std::uint32_t(a.componentType));
+        int components = tinygltf::GetNumComponentsInType(std::uint32_t(a.type));
+        if (componentSize <= 0 || components <= 0) {
+            fail(here, "unknown component type or type");
+        }
+        std::size_t element = std::size_t(componentSize) * std::size_t(components);
+        std::size_t stride = bv.byteStride > 0 ? bv.byteStride : element;
+        if (stride < element) {
+            fail(at("bufferViews", std::size_t(a.bufferView)), "byteStride " + std::to_string(stride) + " is less than an element");
+        }
+        if (bv.byteOffset > buffer.data.size() || bv.byteLength > buffer.data.size() - bv.byteOffset) {
+            fail(at("bufferViews", std::size_t(a.bufferView)), "extends beyond its buffer of " +
+                                                                    std::to_string(buffer.data.size()) + " bytes");
+        }
+        if (a.count > 0 && (a.byteOffset > bv.byteLength || (a.count - 1) > (bv.byteLength - a.byteOffset) / stride ||
+                            a.byteOffset + (a.count - 1) * stride + element > bv.byteLength)) {
+            fail(here, std::to_string(a.count) + " elements extend beyond buffer view " + std::to_string(a.bufferView));
+        }
+        View v;
+        v.data = buffer.data.data() + bv.byteOffset + a.byteOffset;
+        v.stride = stride;
+        v.count = a.count;
+        v.componentType = a.componentType;
+        v.components = components;
+        v.normalized = a.normalized;
+        return v;
+    }
+
+    // Float vectors of N components (positions, normals; texture coordinates may be normalized
+    // integers), every value finite.
+    template <int N>
+    std::vector<glm::vec<N, float>> floats(int index, const std::string& where) const {
+        View v = view(index, where);
+        std::string here = at("accessors", std::size_t(index));
+        if (v.components != N) {
+            fail(here, "expected " + std::to_string(N) + " components, got " + std::to_string(v.components));
+        }
+        std::vector<glm::vec<N, float>> out(v.count);
+        for (std::size_t i = 0; i < v.count; ++i) {
+            const unsigned char* e = v.data + i * v.stride;
+            for (int c = 0; c < N; ++c) {
+                float x = 0.0f;
+                if (v.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT) {
+                    std::memcpy(&x, e + 4 * c, 4);
+                } else if (v.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && v.normalized) {
+                    x = float(e[c]) / 255.0f;
+                } else if (v.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT && v.normalized) {
+                    std::uint16_t u;
+                    std::memcpy(&u, e + 2 * c, 2);
+                    x = float(u) / 65535.0f;
+                } else {
+                    fail(here, "expected floats (or normalized unsigned integers)");
+                }
+                if (!std::isfinite(x)) {
+                    fail(here, "element " + std::to_string(i) + " is not finite");
+                }
+                out[i][c] = x;
+            }
+        }
+        return out;
+    }
+
+    std::vector<std::uint32_t> indices(int index, std::size_t vertices, const std::string& where) const {
+        View v = view(index, where);
+        std::string here = at("accessors", std::size_t(index));
+        if (v.components != 1) {
+            fail(here, "indices must be scalars");
+        }
+        std::vector<std::uint32_t> out(v.count);
+        for (std::size_t i = 0; i < v.count; ++i) {
+            const unsigned char* e = v.data + i * v.stride;
+            std::uint32_t x = 0;
+            if (v.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) {
+                x = e[0];
+            } else if (v.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
+                std::uint16_t u;
+                std::memcpy(&u, e, 2);
+                x = u;
+            } else if (v.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
+                std::memcpy(&x, e, 4);
+            } else {
+                fail(here, "indices must be unsigned bytes, shorts or ints");
+            }
+            if (x >= vertices) {
+                fail(here, "index " + std::to_string(x) + " at element " + std::to_string(i) + " out of range (" +
+                               std::to_string(vertices) + " vertices)");
+            }
+            out[i] = x;
+        }
+        return out;
+    }
+
+    // ---- Materials -------------------------------------------------------------------------------
+
+    static double number(const tinygltf::Value& object, const char* key, double fallback) {
+        if (object.IsObject() && object.Has(key) && object.Get(key).IsNumber()) {
+            return object.Get(key).GetNumberAsDouble();
+        }
+        return fallback;
+    }
+
+    static double clamp01(double x) { return std::isfinite(x) ? std::clamp(x, 0.0, 1.0) : 0.0; }
+
+    std::uint32_t texture(int index, const std::string& where) {
+        if (index < 0 || std::size_t(index) >= model.textures.size()) {
+            fail(where, "texture " + std::to_string(index) + " does not exist");
+        }
+        if (textures[std::size_t(index)] != NONE) {
+            return textures[std::size_t(index)];
+        }
+        const tinygltf::Texture& t = model.textures[std::size_t(index)];
+        std::string here = at("textures", std::size_t(index));
+        if (t.source < 0 || std::size_t(t.source) >= model.images.size()) {
+            fail(here, "image " + std::to_string(t.source) + " does not exist");
+        }
+        auto wrap = [](int mode) {
+            return mode == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE     ? WRAP_CLAMP
+                   : mode == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT ? WRAP_MIRRORED_REPEAT
+                                                                   : WRAP_REPEAT;
+        };
+        std::uint32_t wrapS = WRAP_REPEAT;
+        std::uint32_t wrapT = WRAP_REPEAT;
+        if (t.sampler >= 0) {
+            if (std::size_t(t.sampler) >= model.samplers.size()) {
+                fail(here, "sampler " + std::to_string(t.sampler) + " does not exist");
+            }
+            wrapS = wrap(model.samplers[std::size_t(t.sampler)].wrapS);
+            wrapT = wrap(model.samplers[std::size_t(t.sampler)].wrapT);
+        }
+        const tinygltf::Image& image = model.images[std::size_t(t.source)];
+        std::string bytes(image.image.begin(), image.image.end());
+        textures[std::size_t(index)] = addImageTexture(scene, bytes, wrapS, wrapT, path + ": " + at("images", std::size_t(t.source)));
+        return textures[std::size_t(index)];
+    }
+
+    // glTF's metallic-roughness material as Photon's (the table of docs/scenes.md).
+    std::uint32_t material(int index, const std::string& where) {
+        if (options.material != NONE) {
+            return options.material;
+        }
+        if (index < 0) {
+            if (defaultMaterial == NONE) {
+                defaultMaterial = scene.addMaterial(path + "#default", makeDiffuse(glm::vec3(0.8f)));
+            }
+            return defaultMaterial;
+        }
+        if (std::size_t(index) >= model.materials.size()) {
+            fail(where, "material " + std::to_string(index) + " does not exist");
+        }
+        if (materials[std::size_t(index)] != NONE) {
+            return materials[std::size_t(index)];
+        }
+        const tinygltf::Material& g = model.materials[std::size_t(index)];
+        std::string here = at("materials", std::size_t(index));
+        const tinygltf::PbrMetallicRoughness& pbr = g.pbrMetallicRoughness;
+        glm::vec3 base(1.0f);
+        for (int c = 0; c < 3 && std::size_t(c) < pbr.baseColorFactor.size(); ++c) {
+            base[c] = float(clamp01(pbr.baseColorFactor[std::size_t(c)]));
+        }
+        double metallic = clamp01(pbr.metallicFactor);
+        double roughness = clamp01(pbr.roughnessFactor);
+        auto extension = [&](const char* name) {
+            auto it = g.extensions.find(name);
+            return it == g.extensions.end() ? tinygltf::Value() : it->second;
+        };
+        double transmission = clamp01(number(extension("KHR_materials_transmission"), "transmissionFactor", 0.0));
+        double ior = number(extension("KHR_materials_ior"), "ior", 1.5);
+        double strength = number(extension("KHR_materials_emissive_strength"), "emissiveStrength", 1.0);
+        Material m;
+        bool textured = false;
+        if (transmission >= 0.5) {
+            m = makeGlass(std::isfinite(ior) && ior > 1.0 && ior < 10.0 ? float(ior) : 1.5f, base);
+        } else if (metallic >= 0.5 && roughness < 0.1) {
+            m = makeMirror(base);
+        } else if (metallic >= 0.5) {
+            m = makeGlossy(glm::vec3(0.0f), base, std::max(0.001f, float(roughness * roughness)));
+        } else if (roughness < 0.6) {
+            m = makeGlossy(base * 0.96f, glm::vec3(0.04f), std::max(0.001f, float(roughness * roughness)));
+            textured = true;
+        } else {
+            m = makeDiffuse(base);
+            textured = true;
+        }
+        if (textured && pbr.baseColorTexture.index >= 0 && pbr.baseColorTexture.texCoord == 0) {
+            m.albedoTexture = texture(pbr.baseColorTexture.index, here + "/pbrMetallicRoughness/baseColorTexture");
+        }
+        glm::vec3 emission(0.0f);
+        for (int c = 0; c < 3 && std::size_t(c) < g.emissiveFactor.size(); ++c) {
+            emission[c] = float(clamp01(g.emissiveFactor[std::size_t(c)]));
+        }
+        if (std::isfinite(strength) && strength > 0.0 && strength < 1e6) {
+            m.emission = emission * float(strength);
+        }
+        std::string name = g.name.empty() ? std::to_string(index) : g.name;
+        materials[std::size_t(index)] = scene.addMaterial(path + "#" + name, m);
+        return materials[std::size_t(index)];
+    }
+
+    // ---- Geometry ---------------------------------------------------------------------------------
+
+    void primitive(const tinygltf::Primitive& p, const glm::mat4& transform, const std::string& here) {
+        if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != TINYGLTF_MODE_TRIANGLE_STRIP && p.mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+            return;  // points and lines have no surface
+        }
+        auto attribute = [&](const char* name) {
+            auto it = p.attributes.find(name);
+            return it == p.attributes.end() ? -1 : it->second;
+        };
+        int position = attribute("POSITION");
+        if (position < 0) {
+            fail(here, "a primitive without POSITION");
+        }
+        Mesh mesh;
+        std::vector<glm::vec3> positions = floats<3>(position, here);
+        mesh.positions = positions;
+        if (attribute("NORMAL") >= 0) {
+            mesh.normals = floats<3>(attribute("NORMAL"), here);
+        }
+        if (attribute("TEXCOORD_0") >= 0) {
+            mesh.texcoords = floats<2>(attribute("TEXCOORD_0"), here);
+        }
+        if ((!mesh.normals.empty() && mesh.normals.size() != positions.size()) ||
+            (!mesh.texcoords.empty() && mesh.texcoords.size() != positions.size())) {
+            fail(here, "NORMAL or TEXCOORD_0 has another count than POSITION");
+        }
+        std::vector<std::uint32_t> order;
+        if (p.indices >= 0) {
+            order = indices(p.indices, positions.size(), here);
+        } else {
+            order.resize(positions.size());
+            for (std::uint32_t i = 0; i < order.size(); ++i) {
+                order[i] = i;
+            }
+        }
+        if (p.mode == TINYGLTF_MODE_TRIANGLES) {
+            for (std::size_t i = 0; i + 2 < order.size(); i += 3) {
+                mesh.triangles.emplace_back(order[i], order[i + 1], order[i + 2]);
+            }
+        } else if (p.mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+            for (std::size_t i = 0; i + 2 < order.size(); ++i) {
+                mesh.triangles.push_back(i % 2 == 0 ? glm::uvec3(order[i], order[i + 1], order[i + 2])
+                                                    : glm::uvec3(order[i + 1], order[i], order[i + 2]));
+            }
+        } else {
+            for (std::size_t i = 1; i + 1 < order.size(); ++i) {
+                mesh.triangles.emplace_back(order[0], order[i], order[i + 1]);
+            }
+        }
+        mesh.materials.assign(mesh.triangles.size(), material(p.material, here + "/material"));
+        scene.addMesh(mesh, transform);
+    }
+
+    static glm::mat4 localTransform(const tinygltf::Node& n) {
+        if (n.matrix.size() == 16) {
+            glm::mat4 m;
+            for (int i = 0; i < 16; ++i) {
+                m[i / 4][i % 4] = float(n.matrix[std::size_t(i)]);  // column-major
+            }
+            return m;
+        }
+        glm::mat4 m(1.0f);
+        if (n.translation.size() == 3) {
+            m = glm::translate(m, glm::vec3(float(n.translation[0]), float(n.translation[1]), float(n.translation[2])));
+        }
+        if (n.rotation.size() == 4) {
+            glm::quat q(float(n.rotation[3]), float(n.rotation[0]), float(n.rotation[1]), float(n.rotation[2]));
+            m = m * glm::mat4_cast(glm::normalize(q));
+        }
+        if (n.scale.size() == 3) {
+            m = glm::scale(m, glm::vec3(float(n.scale[0]), float(n.scale[1]), float(n.scale[2])));
+        }
+        return m;
+    }
+
+    void camera(int index, const glm::mat4& world, const std::string& here) {
+        if (extras.hasCamera || index < 0) {
+            return;
+        }
+        if (std::size_t(index) >= model.cameras.size()) {
+            fail(here + "/camera", "camera " + std::to_string(index) + " does not exist");
+        }
+        const tinygltf::Camera& c = model.cameras[std::size_t(index)];
+        if (c.type != "perspective") {
+            return;  // orthographic: a framing camera instead
+        }
+        double fov = c.perspective.yfov * 180.0 / 3.14159265358979323846;
+        CameraDesc d;
+        d.position = glm::vec3(world * glm::vec4(0, 0, 0, 1));
+        glm::vec3 forward = glm::vec3(world * glm::vec4(0, 0, -1, 0));
+        glm::vec3 up = glm::vec3(world * glm::vec4(0, 1, 0, 0));
+        if (!(fov > 0.1 && fov < 179.0) || !(glm::length(forward) > 0.0f) || !(glm::length(up) > 0.0f) ||
+            !std::isfinite(d.position.x + d.position.y + d.position.z)) {
+            fail(at("cameras", std::size_t(index)), "not a usable perspective camera");
+        }
+        d.lookAt = d.position + glm::normalize(forward);
+        d.up = glm::normalize(up);
+        d.fovY = float(fov);
+        extras.camera = d;
+        extras.hasCamera = true;
+    }
+
+    void light(const tinygltf::Node& node, const glm::mat4& world, const std::string& here) {
+        auto it = node.extensions.find("KHR_lights_punctual");
+        if (it == node.extensions.end() || !it->second.IsObject() || !it->second.Has("light")) {
+            return;
+        }
+        const tinygltf::Value& index = it->second.Get("light");
+        if (!index.IsInt() || index.Get<int>() < 0 || std::size_t(index.Get<int>()) >= model.lights.size()) {
+            fail(here + "/extensions/KHR_lights_punctual/light", "no such light");
+        }
+        std::size_t i = std::size_t(index.Get<int>());
+        const tinygltf::Light& l = model.lights[i];
+        std::string where = "/extensions/KHR_lights_punctual/lights/" + std::to_string(i);
+        glm::vec3 colour(1.0f);
+        for (int c = 0; c < 3 && std::size_t(c) < l.color.size(); ++c) {
+            colour[c] = float(clamp01(l.color[std::size_t(c)]));
+        }
+        if (!(std::isfinite(l.intensity) && l.intensity > 0.0 && l.intensity < 1e12)) {
+            fail(where, "intensity must be positive and finite");
+        }
+        if (scene.lights.size() >= LIGHTS_MAX) {
+            fail(where, "more than " + std::to_string(LIGHTS_MAX) + " lights");
+        }
+        glm::vec3 position = glm::vec3(world * glm::vec4(0, 0, 0, 1));
+        glm::vec3 direction = glm::vec3(world * glm::vec4(0, 0, -1, 0));
+        if (!(glm::length(direction) > 0.0f) || !std::isfinite(position.x + position.y + position.z)) {
+            fail(here, "the light's node transform is degenerate");
+        }
+        direction = glm::normalize(direction);
+        float intensity = float(l.intensity * kWattsPerLumen);  // W/sr, or W/m² for directional
+        if (l.type == "directional") {
+            scene.addDirectionalLight(direction, colour * intensity);
+        } else if (l.type == "point") {
+            scene.addPointLight(position, colour * (intensity * 4.0f * PI));
+        } else if (l.type == "spot") {
+            double outer = std::clamp(l.spot.outerConeAngle * 180.0 / 3.14159265358979323846, 0.01, 90.0);
+            double inner = std::clamp(l.spot.innerConeAngle * 180.0 / 3.14159265358979323846, 0.0, outer);
+            scene.addSpotLight(position, direction, glm::vec3(1.0f), float(outer), float(inner));
+            // Photon's spot is given by its flux: the peak intensity I takes I·2π(1 - cos outer)·mean falloff.
+            Light& spot = scene.lights.back();
+            spot.power = colour * (intensity * 2.0f * PI * spot.spotOuter * spot.falloffMean);
+        } else {
+            fail(where + "/type", "unknown light type '" + l.type + "'");
+        }
+        extras.lights += 1;
+    }
+
+    void nodes() {
+        std::vector<int> roots;
+        if (!model.scenes.empty()) {
+            std::size_t s = model.defaultScene >= 0 ? std::size_t(model.defaultScene) : 0;
+            if (s >= model.scenes.size()) {
+                fail("/scene", "scene " + std::to_string(s) + " does not exist");
+            }
+            roots = model.scenes[s].nodes;
+        } else {
+            std::vector<bool> child(model.nodes.size(), false);
+            for (const tinygltf::Node& n : model.nodes) {
+                for (int c : n.children) {
+                    if (c >= 0 && std::size_t(c) < child.size()) {
+                        child[std::size_t(c)] = true;
+                    }
+                }
+            }
+            for (std::size_t i = 0; i < model.nodes.size(); ++i) {
+                if (!child[i]) {
+                    roots.push_back(int(i));
+                }
+            }
+        }
+        // Depth first without recursion; a node met again on its own path is a cycle.
+        struct Visit {
+            int node;
+            glm::mat4 parent;
+            std::size_t depth;
+        };
+        std::vector<Visit> stack;
+        for (auto it = roots.rbegin(); it != roots.rend(); ++it) {
+            stack.push_back({*it, options.transform, 0});
+        }
+        std::vector<int> pathNodes;
+        std::size_t visits = 0;
+        while (!stack.empty()) {
+            Visit v = stack.back();
+            stack.pop_back();
+            pathNodes.resize(v.depth);
+            if (v.node < 0 || std::size_t(v.node) >= model.nodes.size()) {
+                fail(pathNodes.empty() ? "/scenes" : at("nodes", std::size_t(pathNodes.back())) + "/children",
+                     "node " + std::to_string(v.node) + " does not exist");
+            }
+            std::string here = at("nodes", std::size_t(v.node));
+            if (std::find(pathNodes.begin(), pathNodes.end(), v.node) != pathNodes.end()) {
+                fail(here, "a cycle in the node hierarchy");
+            }
+            if (++visits > 1000000) {
+                fail(here, "more than a million node instances");
+            }
+            const tinygltf::Node& n = model.nodes[std::size_t(v.node)];
+            glm::mat4 world = v.parent * localTransform(n);
+            if (n.mesh >= 0) {
+                if (std::size_t(n.mesh) >= model.meshes.size()) {
+                    fail(here + "/mesh", "mesh " + std::to_string(n.mesh) + " does not exist");
+                }
+                const tinygltf::Mesh& mesh = model.meshes[std::size_t(n.mesh)];
+                for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+                    primitive(mesh.primitives[p], world, at("meshes", std::size_t(n.mesh)) + "/primitives/" + std::to_string(p));
+                }
+            }
+            if (options.cameraAndLights) {
+                camera(n.camera, world, here);
+                light(n, world, here);
+            }
+            pathNodes.push_back(v.node);
+            for (auto it = n.children.rbegin(); it != n.children.rend(); ++it) {
+                stack.push_back({*it, world, v.depth + 1});
+            }
+        }
+    }
+};
+
+// tinygltf reads external buffers and images through the loader's file reader.
+struct FileSystem {
+    const FileReader& read;
+    std::string folder;
+};
+
+bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+    auto* fs = static_cast<FileSystem*>(user);
+    try {
+        std::string bytes = fs->read(path, "file the glTF references");
+        out->assign(bytes.begin(), bytes.end());
+        return true;
+    } catch (const InputError& e) {
+        *err += std::string(e.what()) + "\n";
+        return false;
+    }
+}
+
+bool fileExists(const std::string&, void*) { return true; }  // reading says why a file is missing
+std::string expandPath(const std::string& path, void*) { return path; }
+bool writeWholeFile(std::string*, const std::string&, const std::vector<unsigned char>&, void*) { return false; }
+
+// Images stay encoded here; the material that uses one decodes it (texture_loader.cpp).
+bool keepImage(tinygltf::Image* image, const int, std::string*, std::string*, int, int, const unsigned char* bytes,
+               int size, void*) {
+    image->image.assign(bytes, bytes + std::max(size, 0));
+    image->as_is = true;
+    return true;
+}
+
+}  // namespace
+
+ModelExtras addGltfModel(Scene& scene, const std::string& path, const std::string& bytes, const ModelOptions& options,
+                         const FileReader& read) {
+    Loader loader{scene, path, options, {}, {}, {}, NONE, {}};
+    tinygltf::TinyGLTF gltf;
+    FileSystem fs{read, folderOf(path)};
+    gltf.SetFsCallbacks({fileExists, expandPath, readWholeFile, writeWholeFile, &fs});
+    gltf.SetImageLoader(keepImage, nullptr);
+    std::string err;
+    std::string warn;
+    bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
+    if (bytes.size() > 0xffffffffu) {
+        throw InputError(path + ": larger than 4 GiB");
+    }
+    std::string base = fs.folder.empty() ? "." : fs.folder;
+    bool ok = binary ? gltf.LoadBinaryFromMemory(&loader.model, &err, &warn,
+                                                 reinterpret_cast<const unsigned char*>(bytes.data()),
+                                                 unsigned(bytes.size()), base)
+                     : gltf.LoadASCIIFromString(&loader.model, &err, &warn, bytes.data(), unsigned(bytes.size()), base);
+    if (!ok) {
+        std::string first = err.substr(0, err.find('\n'));
+        throw InputError(path + ": " + (first.empty() ? std::string("not a glTF file") : first));
+    }
+    for (std::size_t i = 0; i < loader.model.extensionsRequired.size(); ++i) {
+        const std::string& e = loader.model.extensionsRequired[i];
+        if (std::none_of(std::begin(kSupportedRequired), std::end(kSupportedRequired), [&](const char* s) { return e == s; })) {
+            loader.fail("/extensionsRequired/" + std::to_string(i), "the required extension '" + e + "' is not supported");
+        }
+    }
+    loader.materials.assign(loader.model.materials.size(), NONE);
+    loader.textures.assign(loader.model.textures.size(), NONE);
+    loader.nodes();
+    return loader.extras;
+}
+
+}  // namespace photon

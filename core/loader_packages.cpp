@@ -1,0 +1,11 @@
+// The loader packages' implementations (tinyobjloader, tinygltf), compiled from the headers the
+// Debian packages ship: only in the fuzz build (PHOTON_LOADER_SOURCES), so that sanitizers and
+// coverage reach into them. Images are decoded by texture_loader.cpp, not by tinygltf.
+#define TINYOBJLOADER_IMPLEMENTATION
+#include <tiny_obj_loader.h>
+
+#define TINYGLTF_IMPLEMENTATION
+#define TINYGLTF_NO_STB_IMAGE
+#define TINYGLTF_NO_STB_IMAGE_WRITE
+#define TINYGLTF_NO_EXTERNAL_IMAGE
+#include <tiny_gltf.h>

@@ -1,0 +1,89 @@
+#include "model_loader.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+
+#include "error.h"
+#include "input_file.h"
+
+namespace photon {
+namespace {
+
+std::string lowerExtension(const std::string& path) {
+    std::size_t dot = path.find_last_of('.');
+    std::size_t slash = path.find_last_of('/');
+    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) {
+        return "";
+    }
+    std::string ext = path.substr(dot + 1);
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+}
+
+}  // namespace
+
+std::string folderOf(const std::string& path) {
+    std::size_t slash = path.find_last_of('/');
+    return slash == std::string::npos ? "" : path.substr(0, slash + 1);
+}
+
+FileReader defaultFileReader() {
+    return [](const std::string& path, const char* what) { return readInputFile(path, kModelFileLimit, what); };
+}
+
+bool isModelFile(const std::string& path) {
+    std::string ext = lowerExtension(path);
+    return ext == "obj" || ext == "gltf" || ext == "glb";
+}
+
+ModelExtras addModel(Scene& scene, const std::string& path, const std::string& bytes, const ModelOptions& options,
+                     const FileReader& read) {
+    std::string ext = lowerExtension(path);
+    if (ext == "obj") {
+        return addObjModel(scene, path, bytes, options, read);
+    }
+    if (ext == "gltf" || ext == "glb") {
+        return addGltfModel(scene, path, bytes, options, read);
+    }
+    throw InputError(path + ": not a model file Photon reads (.obj, .gltf, .glb)");
+}
+
+ModelExtras addModelFile(Scene& scene, const std::string& path, const ModelOptions& options) {
+    FileReader read = defaultFileReader();
+    return addModel(scene, path, read(path, "model file"), options, read);
+}
+
+Scene loadModelScene(const std::string& path) {
+    Scene scene;
+    std::size_t slash = path.find_last_of('/');
+    scene.name = slash == std::string::npos ? path : path.substr(slash + 1);
+    ModelOptions options;
+    options.cameraAndLights = true;
+    ModelExtras extras = addModelFile(scene, path, options);
+    // The camera, if the file has none, frames the bounds: from the front, a little above, the
+    // bounding sphere filling the vertical field of view.
+    scene.finalize();
+    glm::vec3 centre = 0.5f * (scene.boundsMin + scene.boundsMax);
+    float radius = std::max(0.5f * glm::length(scene.boundsMax - scene.boundsMin), 1e-6f);
+    if (extras.hasCamera) {
+        scene.camera = extras.camera;
+    } else {
+        scene.camera.fovY = 40.0f;
+        float distance = radius / std::sin(0.5f * glm::radians(scene.camera.fovY)) * 1.05f;
+        scene.camera.position = centre + glm::normalize(glm::vec3(0.35f, 0.3f, 1.0f)) * distance;
+        scene.camera.lookAt = centre;
+        scene.camera.up = glm::vec3(0.0f, 1.0f, 0.0f);
+    }
+    if (extras.lights == 0 && scene.lights.empty()) {
+        // The sun over the camera's left shoulder.
+        glm::vec3 forward = glm::normalize(scene.camera.lookAt - scene.camera.position);
+        glm::vec3 right = glm::normalize(glm::cross(forward, scene.camera.up));
+        glm::vec3 up = glm::cross(right, forward);
+        scene.addDirectionalLight(glm::normalize(forward + 0.6f * right - 1.2f * up), glm::vec3(3.0f));
+    }
+    scene.finalize();
+    return scene;
+}
+
+}  // namespace photon
