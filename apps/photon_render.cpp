@@ -132,7 +132,7 @@ int run(int argc, char** argv) {
     }
 
     std::unique_ptr<Backend> backend = createBackend(backendName, backendOptions);
-    backend->setScene(scene);
+    backend->setScene(std::move(scene));
     backend->setSettings(settings);
     auto start = std::chrono::steady_clock::now();
     backend->prepare();

@@ -28,9 +28,9 @@ GridStats gridStats(const std::vector<std::uint32_t>& cellStart) {
     return s;
 }
 
-void Backend::setScene(const Scene& scene) {
-    scene_ = scene;
-    camera_ = scene.camera;
+void Backend::setScene(Scene scene) {
+    scene_ = std::move(scene);
+    camera_ = scene_.camera;
     sceneDirty_ = true;
     allocationDirty_ = true;
     frameIndex_ = 0;

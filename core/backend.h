@@ -78,7 +78,7 @@ public:
     virtual std::string deviceName() const = 0;  // the processor or GPU it runs on
 
     // Changing any of these restarts accumulation; uploads and allocations happen in prepare().
-    void setScene(const Scene& scene);
+    void setScene(Scene scene);  // moved in: a large scene is not copied again
     void setSettings(const RenderSettings& settings);
     void setCamera(const CameraDesc& camera);
     void resetAccumulation();

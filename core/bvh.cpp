@@ -1,16 +1,20 @@
 #include "bvh.h"
 
+#include <emmintrin.h>
+
 #include <algorithm>
-#include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
-#include <atomic>
+#include <condition_variable>
+#include <cstring>
+#include <deque>
 #include <exception>
 #include <mutex>
 #include <thread>
 
-#include "parallel.h"
 #include "error.h"
+#include "parallel.h"
 #include "scene.h"
 #include "shared/intersect.h"
 
@@ -19,237 +23,178 @@ namespace {
 
 constexpr int kBins = 16;
 constexpr std::uint32_t kMaxLeaf = 4;
-constexpr float kTraversalCost = 1.0f;     // of visiting a node, relative to testing a primitive
-constexpr std::size_t kParallelBinning = 1u << 18;  // nodes this large bin on every core
-constexpr std::size_t kSubtreeTask = 1u << 14;      // subtrees this large become tasks
+constexpr float kTraversalCost = 1.0f;         // of visiting a node, relative to testing a primitive
+constexpr std::uint32_t kSampled = 1u << 14;   // nodes larger than this bin a sample of this many
+constexpr std::uint32_t kSubtree = 1u << 15;   // nodes this small are built whole by one thread
 
-struct Box {
-    glm::vec3 lo{FLOAT_MAX};
-    glm::vec3 hi{-FLOAT_MAX};
-
-    void grow(const Box& b) {
-        lo = glm::min(lo, b.lo);
-        hi = glm::max(hi, b.hi);
-    }
-    void grow(glm::vec3 p) {
-        lo = glm::min(lo, p);
-        hi = glm::max(hi, p);
-    }
-    float area() const {
-        glm::vec3 d = glm::max(hi - lo, glm::vec3(0.0f));
-        return 2.0f * (d.x * d.y + d.y * d.z + d.z * d.x);
-    }
-    bool empty() const { return lo.x > hi.x; }
+// A primitive as the builder moves it: its box as two SSE registers, the reference in the lower
+// corner's fourth lane (32 bytes, partitioned in place, so that every pass streams through memory).
+struct alignas(16) Item {
+    __m128 lo;
+    __m128 hi;
+    std::uint32_t ref() const { return std::uint32_t(_mm_cvtsi128_si32(_mm_castps_si128(_mm_shuffle_ps(lo, lo, 3)))); }
 };
 
-// What the builder moves around: a primitive's box, its centroid and its reference (32 bytes,
-// partitioned in place, so that every pass streams through memory).
-struct Item {
-    glm::vec3 lo;
-    std::uint32_t ref;
-    glm::vec3 hi;
-    float pad;
-    glm::vec3 centroid() const { return 0.5f * (lo + hi); }
-};
-
-// A node of the tree being built: a leaf (count > 0, items [first, first + count)) or an inner
-// node with two children.
-struct BuildNode {
-    Box box;
-    std::uint32_t first = 0;
-    std::uint32_t count = 0;
-    std::int32_t left = -1;
-    std::int32_t right = -1;
-};
-
-// Per axis and bin: the primitives' box, their centroids' box, and how many there are.
-struct Bins {
-    Box box[3][kBins];
-    Box centroids[3][kBins];
-    std::uint32_t count[3][kBins] = {};
-
-    void merge(const Bins& o) {
-        for (int a = 0; a < 3; ++a) {
-            for (int b = 0; b < kBins; ++b) {
-                box[a][b].grow(o.box[a][b]);
-                centroids[a][b].grow(o.centroids[a][b]);
-                count[a][b] += o.count[a][b];
-            }
-        }
-    }
-};
-
-// The bin of a centroid coordinate; binning and partitioning both ask this, so that they agree.
-struct Binning {
-    glm::vec3 lo;
-    glm::vec3 scale;  // bins per unit; 0 on an axis without extent
-
-    explicit Binning(const Box& centroids) : lo(centroids.lo) {
-        glm::vec3 extent = centroids.hi - centroids.lo;
-        for (int a = 0; a < 3; ++a) {
-            scale[a] = extent[a] > 0.0f ? float(kBins) * (1.0f - 1e-6f) / extent[a] : 0.0f;
-        }
-    }
-    int bin(const glm::vec3& c, int axis) const {
-        return std::clamp(int((c[axis] - lo[axis]) * scale[axis]), 0, kBins - 1);
-    }
-};
-
-void binRange(const Item* items, std::size_t n, const Binning& binning, Bins& bins) {
-    for (std::size_t i = 0; i < n; ++i) {
-        glm::vec3 c = items[i].centroid();
-        for (int a = 0; a < 3; ++a) {
-            int b = binning.bin(c, a);
-            bins.box[a][b].lo = glm::min(bins.box[a][b].lo, items[i].lo);
-            bins.box[a][b].hi = glm::max(bins.box[a][b].hi, items[i].hi);
-            bins.centroids[a][b].grow(c);
-            bins.count[a][b] += 1;
-        }
-    }
+float lane(__m128 v, int i) {
+    alignas(16) float f[4];
+    _mm_store_ps(f, v);
+    return f[i];
 }
 
-// A subtree for a worker thread: the placeholder node it replaces and what it covers.
-struct Task {
-    std::int32_t node;
+struct Box {
+    __m128 lo = _mm_set1_ps(FLOAT_MAX);
+    __m128 hi = _mm_set1_ps(-FLOAT_MAX);
+
+    void grow(__m128 l, __m128 h) {
+        lo = _mm_min_ps(lo, l);
+        hi = _mm_max_ps(hi, h);
+    }
+    void grow(const Box& b) { grow(b.lo, b.hi); }
+    float area() const {
+        alignas(16) float d[4];
+        _mm_store_ps(d, _mm_max_ps(_mm_sub_ps(hi, lo), _mm_setzero_ps()));
+        return 2.0f * (d[0] * d[1] + d[1] * d[2] + d[2] * d[0]);
+    }
+    glm::vec3 lower() const { return {lane(lo, 0), lane(lo, 1), lane(lo, 2)}; }
+    glm::vec3 upper() const { return {lane(hi, 0), lane(hi, 1), lane(hi, 2)}; }
+};
+
+// Centroids are kept doubled (lo + hi): the same order, one multiply less per item.
+__m128 doubledCentroid(const Item& item) { return _mm_add_ps(item.lo, item.hi); }
+
+// The work of one node: its items, box, doubled-centroid box and depth.
+struct Range {
     std::uint32_t first;
     std::uint32_t count;
     Box box;
     Box centroids;
+    std::uint32_t depth = 1;
 };
+
+// Below this depth nodes split at the median along their longest axis instead, so that no input,
+// however clustered, makes the hierarchy deeper than the traversal's stack.
+constexpr std::uint32_t kMedianDepth = 32;
 
 class Builder {
 public:
     explicit Builder(std::vector<Item>& items) : items_(items) {}
 
-    // Builds the subtree of items [first, first + count), whose box and centroid box are given;
-    // returns its node index in `out`. With `tasks`, subtrees small enough become tasks instead.
-    std::int32_t build(std::vector<BuildNode>& out, std::uint32_t first, std::uint32_t count, const Box& box,
-                       const Box& centroids, bool parallel, std::vector<Task>* tasks) {
-        BuildNode node;
-        node.box = box;
-        node.first = first;
-        node.count = count;
-        std::int32_t index = std::int32_t(out.size());
-        out.push_back(node);
-        if (count <= 1) {
-            return index;
+    // Splits a range by the surface area heuristic along the longest axis of its centroids, or
+    // returns false if a leaf is cheaper. Partitions the items and measures both sides.
+    bool split(const Range& r, Range& left, Range& right) const {
+        if (r.count <= kMaxLeaf) {
+            return false;  // small enough: a leaf, without weighing a split
         }
-        if (tasks != nullptr && count <= kSubtreeTask * 4) {
-            tasks->push_back({index, first, count, box, centroids});
-            return index;
+        glm::vec3 clo = Box{r.centroids}.lower();
+        glm::vec3 chi = Box{r.centroids}.upper();
+        glm::vec3 extent = chi - clo;
+        int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+        if (!(extent[axis] > 0.0f) || r.depth >= kMedianDepth) {
+            return r.count > kMaxLeaf && splitAtMedian(r, axis, left, right);
         }
-        Split s;
-        if (!chooseSplit(first, count, box, centroids, parallel, s)) {
-            return index;  // a leaf
+        float lo = clo[axis];
+        float scale = float(kBins) * (1.0f - 1e-6f) / extent[axis];
+        auto binOf = [&](const Item& item) {
+            float c = lane(doubledCentroid(item), axis);
+            return std::clamp(int((c - lo) * scale), 0, kBins - 1);
+        };
+        // Bin every item, or a regular sample of a large node (the split need only be nearly best;
+        // the partition below measures the children exactly).
+        Box bins[kBins];
+        std::uint32_t counts[kBins] = {};
+        std::uint32_t stride = r.count > kSampled ? r.count / kSampled : 1;
+        for (std::uint32_t i = r.first; i < r.first + r.count; i += stride) {
+            int b = binOf(items_[i]);
+            bins[b].grow(items_[i].lo, items_[i].hi);
+            counts[b] += 1;
         }
-        std::int32_t left = build(out, first, s.index - first, s.leftBox, s.leftCentroids, parallel, tasks);
-        std::int32_t right = build(out, s.index, first + count - s.index, s.rightBox, s.rightCentroids, parallel, tasks);
-        out[std::size_t(index)].left = left;
-        out[std::size_t(index)].right = right;
-        out[std::size_t(index)].count = 0;
-        return index;
-    }
+        float rightArea[kBins];
+        std::uint32_t rightCount[kBins];
+        Box acc;
+        std::uint32_t n = 0;
+        for (int b = kBins - 1; b > 0; --b) {
+            acc.grow(bins[b]);
+            n += counts[b];
+            rightArea[b] = acc.area();
+            rightCount[b] = n;
+        }
+        acc = Box{};
+        n = 0;
+        float bestCost = FLOAT_MAX;
+        int bestBin = -1;
+        for (int b = 0; b < kBins - 1; ++b) {
+            acc.grow(bins[b]);
+            n += counts[b];
+            if (n == 0 || rightCount[b + 1] == 0) {
+                continue;
+            }
+            float cost = acc.area() * float(n) + rightArea[b + 1] * float(rightCount[b + 1]);
+            if (cost < bestCost) {
+                bestCost = cost;
+                bestBin = b;
+            }
+        }
+        if (bestBin < 0) {
+            return r.count > kMaxLeaf && splitAtMedian(r, axis, left, right);
+        }
 
-private:
-    struct Split {
-        std::uint32_t index = 0;  // the first item of the right side
-        Box leftBox, leftCentroids, rightBox, rightCentroids;
-    };
-
-    // Children's boxes of a split by order (no bins): measured.
-    void measure(std::uint32_t first, std::uint32_t count, Box& box, Box& centroids) const {
-        for (std::uint32_t i = first; i < first + count; ++i) {
-            box.grow(Box{items_[i].lo, items_[i].hi});
-            centroids.grow(items_[i].centroid());
+        // Hoare's partition, measuring each side as its items settle.
+        left = Range{r.first, 0, {}, {}, r.depth + 1};
+        right = Range{0, 0, {}, {}, r.depth + 1};
+        std::uint32_t i = r.first;
+        std::uint32_t j = r.first + r.count;  // one past the last unsettled item
+        auto settleLeft = [&](const Item& item) {
+            left.box.grow(item.lo, item.hi);
+            __m128 c = doubledCentroid(item);
+            left.centroids.grow(c, c);
+        };
+        auto settleRight = [&](const Item& item) {
+            right.box.grow(item.lo, item.hi);
+            __m128 c = doubledCentroid(item);
+            right.centroids.grow(c, c);
+        };
+        while (true) {
+            while (i < j && binOf(items_[i]) <= bestBin) {
+                settleLeft(items_[i]);
+                ++i;
+            }
+            while (i < j && binOf(items_[j - 1]) > bestBin) {
+                settleRight(items_[j - 1]);
+                --j;
+            }
+            if (i >= j) {
+                break;
+            }
+            std::swap(items_[i], items_[j - 1]);
+            settleLeft(items_[i]);
+            settleRight(items_[j - 1]);
+            ++i;
+            --j;
         }
-    }
-
-    bool splitByOrder(std::uint32_t first, std::uint32_t count, Split& s) const {
-        s.index = first + count / 2;
-        measure(first, s.index - first, s.leftBox, s.leftCentroids);
-        measure(s.index, first + count - s.index, s.rightBox, s.rightCentroids);
+        left.count = i - r.first;
+        right.first = i;
+        right.count = r.first + r.count - i;
+        if (left.count == 0 || right.count == 0) {
+            return splitAtMedian(r, axis, left, right);
+        }
         return true;
     }
 
-    // The SAH split of items [first, first + count): partitions them and returns true, or false if
-    // a leaf is cheaper.
-    bool chooseSplit(std::uint32_t first, std::uint32_t count, const Box& box, const Box& centroids, bool parallel,
-                     Split& s) {
-        Binning binning(centroids);
-        Bins bins;
-        if (parallel && count >= kParallelBinning) {
-            std::size_t chunks = std::max<std::size_t>(1, count / (kParallelBinning / 4));
-            std::vector<Bins> partial(chunks);
-            parallelFor(chunks, 1, [&](std::size_t a, std::size_t b) {
-                for (std::size_t c = a; c < b; ++c) {
-                    std::size_t begin = count * c / chunks;
-                    std::size_t end = count * (c + 1) / chunks;
-                    binRange(items_.data() + first + begin, end - begin, binning, partial[c]);
-                }
-            });
-            for (const Bins& p : partial) {
-                bins.merge(p);
-            }
-        } else {
-            binRange(items_.data() + first, count, binning, bins);
-        }
-        float bestCost = FLOAT_MAX;
-        int bestAxis = -1;
-        int bestBin = 0;
-        for (int a = 0; a < 3; ++a) {
-            if (binning.scale[a] == 0.0f) {
-                continue;
-            }
-            // Sweep from the right: the area and count of bins [b, kBins).
-            float rightArea[kBins];
-            std::uint32_t rightCount[kBins];
-            Box acc;
-            std::uint32_t n = 0;
-            for (int b = kBins - 1; b > 0; --b) {
-                acc.grow(bins.box[a][b]);
-                n += bins.count[a][b];
-                rightArea[b] = acc.area();
-                rightCount[b] = n;
-            }
-            acc = Box{};
-            n = 0;
-            for (int b = 0; b < kBins - 1; ++b) {
-                acc.grow(bins.box[a][b]);
-                n += bins.count[a][b];
-                if (n == 0 || rightCount[b + 1] == 0) {
-                    continue;
-                }
-                float cost = acc.area() * float(n) + rightArea[b + 1] * float(rightCount[b + 1]);
-                if (cost < bestCost) {
-                    bestCost = cost;
-                    bestAxis = a;
-                    bestBin = b;
-                }
-            }
-        }
-        if (bestAxis < 0) {
-            // Every centroid in one point: split by order, so that leaves stay small.
-            return count > kMaxLeaf && splitByOrder(first, count, s);
-        }
-        float parentArea = box.area();
-        float splitCost = kTraversalCost + (parentArea > 0.0f ? bestCost / parentArea : 0.0f);
-        if (count <= kMaxLeaf && float(count) <= splitCost) {
-            return false;
-        }
-        for (int b = 0; b < kBins; ++b) {
-            Box& box2 = b <= bestBin ? s.leftBox : s.rightBox;
-            Box& centroids2 = b <= bestBin ? s.leftCentroids : s.rightCentroids;
-            box2.grow(bins.box[bestAxis][b]);
-            centroids2.grow(bins.centroids[bestAxis][b]);
-        }
-        Item* begin = items_.data() + first;
-        Item* middle = std::partition(begin, begin + count, [&](const Item& item) {
-            return binning.bin(item.centroid(), bestAxis) <= bestBin;
+private:
+    // Half the items on each side, split at the median of their centroids along `axis`.
+    bool splitAtMedian(const Range& r, int axis, Range& left, Range& right) const {
+        Item* begin = items_.data() + r.first;
+        std::nth_element(begin, begin + r.count / 2, begin + r.count, [axis](const Item& a, const Item& b) {
+            return lane(doubledCentroid(a), axis) < lane(doubledCentroid(b), axis);
         });
-        s.index = first + std::uint32_t(middle - begin);
-        if (s.index == first || s.index == first + count) {
-            s = Split{};
-            return splitByOrder(first, count, s);
+        left = Range{r.first, r.count / 2, {}, {}, r.depth + 1};
+        right = Range{r.first + r.count / 2, r.count - r.count / 2, {}, {}, r.depth + 1};
+        for (Range* side : {&left, &right}) {
+            for (std::uint32_t i = side->first; i < side->first + side->count; ++i) {
+                side->box.grow(items_[i].lo, items_[i].hi);
+                __m128 c = doubledCentroid(items_[i]);
+                side->centroids.grow(c, c);
+            }
         }
         return true;
     }
@@ -257,61 +202,209 @@ private:
     std::vector<Item>& items_;
 };
 
-// The hierarchy in the shared layout: every inner build node a BvhNode holding both children's
-// boxes, nodes in depth-first order (the root first, a node's first child next to it).
-struct Flattener {
-    const std::vector<BuildNode>& tree;
-    const std::vector<Item>& items;
-    std::vector<BvhNode>& nodes;
-    std::vector<std::uint32_t>& refs;
-    BvhStats& stats;
-    float rootArea;
+// Where a node's child goes: node `node`'s first (A) or second (B) child.
+struct Slot {
+    std::uint32_t node = NONE;  // NONE: the root itself
+    bool second = false;
+};
 
-    void child(const BuildNode& c, glm::vec3& lower, glm::vec3& upper, std::uint32_t& index, std::uint32_t& count,
-               std::uint32_t depth) {
-        lower = c.box.lo;
-        upper = c.box.hi;
-        if (c.left < 0 && c.count == 0) {
-            // No child: a point beyond every ray's reach (an inverted box would look full to the
-            // slab test, which sorts its planes).
-            lower = glm::vec3(FLOAT_MAX);
-            upper = glm::vec3(FLOAT_MAX);
-            index = 0;
-            count = 0;
-        } else if (c.left < 0) {
-            index = std::uint32_t(refs.size());
-            count = c.count;
-            for (std::uint32_t i = c.first; i < c.first + c.count; ++i) {
-                refs.push_back(items[i].ref);
+// An absent child: a point beyond every ray's reach (an inverted box would look full to the slab
+// test, which sorts its planes).
+BvhNode emptyNode() {
+    BvhNode n{};
+    n.lowerA = n.upperA = n.lowerB = n.upperB = glm::vec3(FLOAT_MAX);
+    return n;
+}
+
+bool absent(glm::vec3 lower) { return lower.x == FLOAT_MAX; }
+
+// Writes a child into its parent's slot: a leaf (its items, which are its primitive references in
+// item order) or inner node `index`.
+void fill(BvhNode& parent, bool second, const Range& child, std::uint32_t index, bool leaf) {
+    (second ? parent.lowerB : parent.lowerA) = child.box.lower();
+    (second ? parent.upperB : parent.upperA) = child.box.upper();
+    (second ? parent.childB : parent.childA) = leaf ? child.first : index;
+    (second ? parent.countB : parent.countA) = leaf ? child.count : 0;
+}
+
+// A subtree built by one thread, its nodes indexed from 0, moved into the whole at the end.
+struct Subtree {
+    Slot slot;                   // where its root goes in the whole
+    Range root;
+    std::vector<BvhNode> nodes;  // empty: the root is a leaf
+};
+
+// Builds the hierarchy on every core: large nodes are split by whichever thread takes them from a
+// queue (their children go back on it), small ones become whole subtrees of one thread. Inner nodes
+// are written straight into the shared layout; a child's box and place are filled into its parent
+// once the child is known to be a leaf or an inner node.
+class ParallelBuild {
+public:
+    ParallelBuild(std::vector<Item>& items, std::vector<BvhNode>& nodes) : builder_(items), nodes_(nodes) {}
+
+    void run(const Range& root) {
+        nodes_.reserve(root.count / 2 + 2);
+        queue_.push_back({Slot{}, root});
+        pending_ = 1;
+        std::size_t threads = std::max(1u, std::thread::hardware_concurrency());
+        std::vector<std::thread> workers;
+        for (std::size_t t = 0; t < threads; ++t) {
+            workers.emplace_back([this] { work(); });
+        }
+        for (std::thread& w : workers) {
+            w.join();
+        }
+        if (failure_) {
+            std::rethrow_exception(failure_);
+        }
+        if (nodes_.empty()) {
+            // The root is a leaf: an inner root with it as its first child and no second.
+            nodes_.push_back(emptyNode());
+            fill(nodes_[0], false, rootLeaf_, 0, true);
+        }
+        for (Subtree& s : subtrees_) {
+            auto offset = std::uint32_t(nodes_.size());
+            fill(nodes_[s.slot.node], s.slot.second, s.root, offset, s.nodes.empty());
+            for (BvhNode n : s.nodes) {
+                n.childA += n.countA == 0 && !absent(n.lowerA) ? offset : 0;
+                n.childB += n.countB == 0 && !absent(n.lowerB) ? offset : 0;
+                nodes_.push_back(n);
             }
-            stats.leaves += 1;
-            stats.sahCost += rootArea > 0.0f ? double(c.box.area()) / rootArea * double(c.count) : double(c.count);
-        } else {
-            count = 0;
-            index = flatten(c, depth + 1);
         }
     }
 
-    std::uint32_t flatten(const BuildNode& n, std::uint32_t depth) {
-        std::uint32_t index = std::uint32_t(nodes.size());
-        nodes.push_back(BvhNode{});
-        stats.depth = std::max(stats.depth, depth);
-        stats.sahCost += rootArea > 0.0f ? double(n.box.area()) / rootArea * kTraversalCost : kTraversalCost;
-        BvhNode node{};
-        child(tree[std::size_t(n.left)], node.lowerA, node.upperA, node.childA, node.countA, depth);
-        child(tree[std::size_t(n.right)], node.lowerB, node.upperB, node.childB, node.countB, depth);
-        nodes[index] = node;
-        return index;
+private:
+    struct Job {
+        Slot slot;
+        Range range;
+    };
+
+    void buildSubtree(Subtree& s) const {
+        Range left;
+        Range right;
+        if (s.root.count <= 1 || !builder_.split(s.root, left, right)) {
+            return;  // a leaf
+        }
+        s.nodes.push_back(emptyNode());
+        std::vector<std::pair<Slot, Range>> stack{{Slot{0, true}, right}, {Slot{0, false}, left}};
+        while (!stack.empty()) {
+            auto [slot, r] = stack.back();
+            stack.pop_back();
+            if (r.count <= 1 || !builder_.split(r, left, right)) {
+                fill(s.nodes[slot.node], slot.second, r, 0, true);
+                continue;
+            }
+            auto index = std::uint32_t(s.nodes.size());
+            s.nodes.push_back(emptyNode());
+            fill(s.nodes[slot.node], slot.second, r, index, false);
+            stack.push_back({Slot{index, true}, right});
+            stack.push_back({Slot{index, false}, left});
+        }
     }
+
+    void work() {
+        try {
+            while (true) {
+                Job job;
+                {
+                    std::unique_lock<std::mutex> lock(mutex_);
+                    ready_.wait(lock, [&] { return !queue_.empty() || pending_ == 0; });
+                    if (queue_.empty()) {
+                        return;
+                    }
+                    job = queue_.front();
+                    queue_.pop_front();
+                }
+                Range left;
+                Range right;
+                if (job.range.count <= kSubtree && job.slot.node != NONE) {
+                    Subtree s{job.slot, job.range, {}};
+                    buildSubtree(s);
+                    std::lock_guard<std::mutex> lock(mutex_);
+                    subtrees_.push_back(std::move(s));
+                    pending_ -= 1;
+                } else if (job.range.count > 1 && builder_.split(job.range, left, right)) {
+                    std::lock_guard<std::mutex> lock(mutex_);
+                    auto index = std::uint32_t(nodes_.size());
+                    nodes_.push_back(emptyNode());
+                    if (job.slot.node != NONE) {
+                        fill(nodes_[job.slot.node], job.slot.second, job.range, index, false);
+                    }
+                    queue_.push_back({Slot{index, false}, left});
+                    queue_.push_back({Slot{index, true}, right});
+                    pending_ += 1;  // two more, this one done
+                } else {
+                    std::lock_guard<std::mutex> lock(mutex_);
+                    if (job.slot.node != NONE) {
+                        fill(nodes_[job.slot.node], job.slot.second, job.range, 0, true);
+                    } else {
+                        rootLeaf_ = job.range;
+                    }
+                    pending_ -= 1;
+                }
+                ready_.notify_all();
+            }
+        } catch (...) {
+            std::lock_guard<std::mutex> lock(mutex_);
+            failure_ = std::current_exception();
+            queue_.clear();
+            pending_ = 0;
+            ready_.notify_all();
+        }
+    }
+
+    Builder builder_;
+    std::vector<BvhNode>& nodes_;
+    std::mutex mutex_;
+    std::condition_variable ready_;
+    std::deque<Job> queue_;
+    std::size_t pending_ = 0;  // jobs queued or running
+    std::vector<Subtree> subtrees_;
+    Range rootLeaf_{0, 0, {}, {}};
+    std::exception_ptr failure_;
 };
 
-Box quadBox(const Quad& q) {
-    Box b;
-    b.grow(q.corner);
-    b.grow(q.corner + q.edgeU);
-    b.grow(q.corner + q.edgeV);
-    b.grow(q.corner + q.edgeU + q.edgeV);
-    return b;
+// Depth, leaves and SAH cost of the finished hierarchy: Σ over inner nodes of area/root area times
+// the cost of a visit, plus Σ over leaves of area/root area times their primitives.
+void measure(const std::vector<BvhNode>& nodes, BvhStats& stats) {
+    auto area = [](glm::vec3 lo, glm::vec3 hi) {
+        glm::dvec3 d = glm::max(glm::dvec3(hi) - glm::dvec3(lo), glm::dvec3(0.0));
+        return 2.0 * (d.x * d.y + d.y * d.z + d.z * d.x);
+    };
+    const BvhNode& root = nodes[0];
+    glm::vec3 lo = absent(root.lowerB) ? root.lowerA : glm::min(root.lowerA, root.lowerB);
+    glm::vec3 hi = absent(root.lowerB) ? root.upperA : glm::max(root.upperA, root.upperB);
+    double rootArea = std::max(area(lo, hi), 1e-30);
+    stats.sahCost = kTraversalCost;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> stack{{0, 1}};
+    while (!stack.empty()) {
+        auto [index, depth] = stack.back();
+        stack.pop_back();
+        const BvhNode& n = nodes[index];
+        stats.depth = std::max(stats.depth, depth);
+        for (int c = 0; c < 2; ++c) {
+            glm::vec3 clo = c ? n.lowerB : n.lowerA;
+            glm::vec3 chi = c ? n.upperB : n.upperA;
+            std::uint32_t count = c ? n.countB : n.countA;
+            if (absent(clo)) {
+                continue;
+            }
+            double share = area(clo, chi) / rootArea;
+            if (count > 0) {
+                stats.leaves += 1;
+                stats.sahCost += share * double(count);
+            } else {
+                stats.sahCost += share * kTraversalCost;
+                stack.push_back({c ? n.childB : n.childA, depth + 1});
+            }
+        }
+    }
+}
+
+Item makeItem(glm::vec3 lo, glm::vec3 hi, std::uint32_t ref) {
+    float bits;
+    std::memcpy(&bits, &ref, 4);
+    return {_mm_set_ps(bits, lo.z, lo.y, lo.x), _mm_set_ps(0.0f, hi.z, hi.y, hi.x)};
 }
 
 }  // namespace
@@ -321,103 +414,66 @@ BvhStats buildBvh(const Scene& scene, std::vector<BvhNode>& nodes, std::vector<s
     nodes.clear();
     refs.clear();
     BvhStats stats;
-    std::vector<Item> items;
-    items.reserve(scene.spheres.size() + scene.quads.size() + scene.triangles.size());
-    auto add = [&](const Box& b, std::uint32_t kind, std::size_t index) {
-        items.push_back({b.lo, (kind << PRIMITIVE_INDEX_BITS) | std::uint32_t(index), b.hi, 0.0f});
-    };
+    std::vector<Item> items(scene.spheres.size() + scene.quads.size() + scene.triangles.size());
+    std::size_t next = 0;
     for (std::size_t i = 0; i < scene.spheres.size(); ++i) {
         const Sphere& s = scene.spheres[i];
-        add(Box{s.center - glm::vec3(s.radius), s.center + glm::vec3(s.radius)}, PRIM_SPHERE, i);
+        items[next++] = makeItem(s.center - glm::vec3(s.radius), s.center + glm::vec3(s.radius),
+                                 (PRIM_SPHERE << PRIMITIVE_INDEX_BITS) | std::uint32_t(i));
     }
     for (std::size_t i = 0; i < scene.quads.size(); ++i) {
-        add(quadBox(scene.quads[i]), PRIM_QUAD, i);
+        const Quad& q = scene.quads[i];
+        glm::vec3 corners[4] = {q.corner, q.corner + q.edgeU, q.corner + q.edgeV, q.corner + q.edgeU + q.edgeV};
+        glm::vec3 lo = corners[0];
+        glm::vec3 hi = corners[0];
+        for (glm::vec3 c : corners) {
+            lo = glm::min(lo, c);
+            hi = glm::max(hi, c);
+        }
+        items[next++] = makeItem(lo, hi, (PRIM_QUAD << PRIMITIVE_INDEX_BITS) | std::uint32_t(i));
     }
-    items.resize(items.size() + scene.triangles.size());
-    std::size_t base = items.size() - scene.triangles.size();
-    parallelFor(scene.triangles.size(), 65536, [&](std::size_t a, std::size_t b) {
-        for (std::size_t i = a; i < b; ++i) {
-            const Triangle& t = scene.triangles[i];
-            items[base + i] = {glm::min(t.v0, glm::min(t.v1, t.v2)), (PRIM_TRIANGLE << PRIMITIVE_INDEX_BITS) | std::uint32_t(i),
-                               glm::max(t.v0, glm::max(t.v1, t.v2)), 0.0f};
+    std::size_t base = next;
+    std::size_t chunks = std::max<std::size_t>(1, scene.triangles.size() / 65536);
+    std::vector<Box> boxes(chunks + 1);
+    std::vector<Box> centroidBoxes(chunks + 1);
+    // The triangles' items, and with them the root's box and centroid box, on every core.
+    parallelFor(chunks, 1, [&](std::size_t a, std::size_t b) {
+        for (std::size_t c = a; c < b; ++c) {
+            std::size_t n = scene.triangles.size();
+            for (std::size_t i = n * c / chunks; i < n * (c + 1) / chunks; ++i) {
+                const Triangle& t = scene.triangles[i];
+                Item item = makeItem(glm::min(t.v0, glm::min(t.v1, t.v2)), glm::max(t.v0, glm::max(t.v1, t.v2)),
+                                     (PRIM_TRIANGLE << PRIMITIVE_INDEX_BITS) | std::uint32_t(i));
+                items[base + i] = item;
+                boxes[c].grow(item.lo, item.hi);
+                __m128 centroid = doubledCentroid(item);
+                centroidBoxes[c].grow(centroid, centroid);
+            }
         }
     });
+    for (std::size_t i = 0; i < base; ++i) {
+        boxes[chunks].grow(items[i].lo, items[i].hi);
+        __m128 centroid = doubledCentroid(items[i]);
+        centroidBoxes[chunks].grow(centroid, centroid);
+    }
     stats.primitives = std::uint32_t(items.size());
     if (items.empty()) {
         return stats;
     }
-
-    // The top of the tree on this thread (binning on every core), then its subtrees as tasks.
-    Box box;
-    Box centroids;
-    for (const Item& item : items) {
-        box.grow(Box{item.lo, item.hi});
-        centroids.grow(item.centroid());
+    Range root{0, std::uint32_t(items.size()), {}, {}};
+    for (std::size_t c = 0; c <= chunks; ++c) {
+        root.box.grow(boxes[c]);
+        root.centroids.grow(centroidBoxes[c]);
     }
-    Builder builder(items);
-    std::vector<BuildNode> tree;
-    std::vector<Task> tasks;
-    bool split = items.size() > kSubtreeTask * 4;
-    builder.build(tree, 0, std::uint32_t(items.size()), box, centroids, true, split ? &tasks : nullptr);
-    std::vector<std::vector<BuildNode>> subtrees(tasks.size());
-    std::size_t threads = std::max(1u, std::thread::hardware_concurrency());
-    std::vector<std::thread> workers;
-    std::atomic<std::size_t> next{0};
-    std::exception_ptr failure;
-    std::mutex failureMutex;
-    for (std::size_t w = 0; w < std::min(threads, tasks.size()); ++w) {
-        workers.emplace_back([&] {
-            try {
-                for (std::size_t t = next++; t < tasks.size(); t = next++) {
-                    Builder sub(items);
-                    sub.build(subtrees[t], tasks[t].first, tasks[t].count, tasks[t].box, tasks[t].centroids, false, nullptr);
-                }
-            } catch (...) {
-                std::lock_guard<std::mutex> lock(failureMutex);
-                failure = std::current_exception();
-                next = tasks.size();
-            }
-        });
-    }
-    for (std::thread& w : workers) {
-        w.join();
-    }
-    if (failure) {
-        std::rethrow_exception(failure);
-    }
-    // Each task's subtree replaces its placeholder: its root in place, the rest appended.
-    for (std::size_t t = 0; t < tasks.size(); ++t) {
-        std::vector<BuildNode>& sub = subtrees[t];
-        std::int32_t offset = std::int32_t(tree.size()) - 1;
-        auto shift = [&](std::int32_t i) { return i < 0 ? i : i + offset; };
-        for (std::size_t i = 0; i < sub.size(); ++i) {
-            BuildNode n = sub[i];
-            n.left = shift(n.left);
-            n.right = shift(n.right);
-            if (i == 0) {
-                tree[std::size_t(tasks[t].node)] = n;
-            } else {
-                tree.push_back(n);
-            }
+    ParallelBuild(items, nodes).run(root);
+    refs.resize(items.size());
+    parallelFor(items.size(), 65536, [&](std::size_t a, std::size_t b) {
+        for (std::size_t i = a; i < b; ++i) {
+            refs[i] = items[i].ref();
         }
-    }
-
-    // The root of the shared layout is an inner node: a lone leaf becomes its first child.
-    if (tree[0].left < 0) {
-        BuildNode leaf = tree[0];
-        BuildNode empty;
-        empty.count = 0;
-        empty.left = -1;
-        tree.push_back(leaf);
-        tree.push_back(empty);
-        tree[0].left = std::int32_t(tree.size() - 2);
-        tree[0].right = std::int32_t(tree.size() - 1);
-    }
-    nodes.reserve(items.size() / 2 + 1);
-    refs.reserve(items.size());
-    Flattener flat{tree, items, nodes, refs, stats, tree[0].box.area()};
-    flat.flatten(tree[0], 1);
+    });
     stats.nodes = std::uint32_t(nodes.size());
+    measure(nodes, stats);
     if (stats.depth >= BVH_STACK_SIZE) {
         throw InputError("the scene's bounding volume hierarchy is " + std::to_string(stats.depth) +
                          " levels deep, more than the " + std::to_string(BVH_STACK_SIZE) +

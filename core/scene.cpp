@@ -4,6 +4,7 @@
 #include <cmath>
 #include <utility>
 
+#include "parallel.h"
 #include "shared/material.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -149,71 +150,96 @@ void Scene::addMesh(const Mesh& mesh, const glm::mat4& transform) {
     bool mirrors = glm::determinant(glm::mat3(transform)) < 0.0f;
     bool hasNormals = mesh.normals.size() == mesh.positions.size() && !mesh.normals.empty();
     bool hasTexcoords = mesh.texcoords.size() == mesh.positions.size() && !mesh.texcoords.empty();
+    bool attributed = hasNormals || hasTexcoords;
+    // Vertices into the scene's space, normals by the inverse transpose.
     std::vector<glm::vec3> world(mesh.positions.size());
-    for (std::size_t i = 0; i < world.size(); ++i) {
-        world[i] = glm::vec3(transform * glm::vec4(mesh.positions[i], 1.0f));
-    }
-    TriangleObject object{std::uint32_t(triangles.size()), 0};
-    triangles.reserve(triangles.size() + mesh.triangles.size());
-    if (hasNormals || hasTexcoords) {
-        triangleAttributes.reserve(triangleAttributes.size() + mesh.triangles.size());
-    }
-    for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
-        glm::uvec3 v = mesh.triangles[f];
-        if (mirrors) {
-            std::swap(v.y, v.z);  // a mirror image reverses the winding: keep the front the front
-        }
-        glm::vec3 a = world[v.x];
-        glm::vec3 b = world[v.y];
-        glm::vec3 c = world[v.z];
-        glm::vec3 n = glm::cross(b - a, c - a);
-        float area2 = glm::dot(n, n);
-        float scale2 = glm::dot(b - a, b - a) * glm::dot(c - a, c - a);
-        if (!(area2 > 1e-14f * scale2) || !std::isfinite(area2) || !std::isfinite(scale2)) {
-            droppedTriangles += 1;
-            continue;
-        }
-        Triangle t{};
-        t.v0 = a;
-        t.v1 = b;
-        t.v2 = c;
-        t.material = mesh.materials[f];
-        t.attributes = NONE;
-        if (hasNormals || hasTexcoords) {
-            TriangleAttributes attributes{};
+    std::vector<std::uint32_t> normals(hasNormals ? mesh.normals.size() : 0);
+    std::vector<std::uint8_t> usableNormal(normals.size());
+    parallelFor(world.size(), 65536, [&](std::size_t a, std::size_t b) {
+        for (std::size_t i = a; i < b; ++i) {
+            world[i] = glm::vec3(transform * glm::vec4(mesh.positions[i], 1.0f));
             if (hasNormals) {
-                glm::vec3 normals[3] = {mesh.normals[v.x], mesh.normals[v.y], mesh.normals[v.z]};
-                bool usable = true;
-                for (glm::vec3& nv : normals) {
-                    nv = normalTransform * nv;
-                    float length = glm::length(nv);
-                    usable = usable && std::isfinite(length) && length > 0.0f;
-                    nv = usable ? nv / length : nv;
-                }
-                if (usable) {
-                    attributes.normal0 = octEncode(normals[0]);
-                    attributes.normal1 = octEncode(normals[1]);
-                    attributes.normal2 = octEncode(normals[2]);
-                    attributes.flags |= ATTRIBUTE_NORMALS;
-                }
+                glm::vec3 n = normalTransform * mesh.normals[i];
+                float length = glm::length(n);
+                usableNormal[i] = std::isfinite(length) && length > 0.0f;
+                normals[i] = usableNormal[i] ? octEncode(n / length) : 0u;
             }
-            if (hasTexcoords) {
-                attributes.s0 = mesh.texcoords[v.x].x;
-                attributes.t0 = mesh.texcoords[v.x].y;
-                attributes.s1 = mesh.texcoords[v.y].x;
-                attributes.t1 = mesh.texcoords[v.y].y;
-                attributes.s2 = mesh.texcoords[v.z].x;
-                attributes.t2 = mesh.texcoords[v.z].y;
-                attributes.flags |= ATTRIBUTE_TEXCOORDS;
-            }
-            t.attributes = std::uint32_t(triangleAttributes.size());
-            triangleAttributes.push_back(attributes);
         }
-        triangles.push_back(t);
-        object.count += 1;
+    });
+    // Which triangles have an area (in chunks, counted first, so that they keep their order).
+    std::size_t count = mesh.triangles.size();
+    std::vector<std::uint8_t> keep(count);
+    constexpr std::size_t kChunk = 65536;
+    std::size_t chunks = (count + kChunk - 1) / kChunk;
+    std::vector<std::size_t> kept(chunks + 1, 0);
+    parallelFor(chunks, 1, [&](std::size_t a, std::size_t b) {
+        for (std::size_t c = a; c < b; ++c) {
+            for (std::size_t f = c * kChunk; f < std::min(count, (c + 1) * kChunk); ++f) {
+                glm::uvec3 v = mesh.triangles[f];
+                glm::vec3 e1 = world[v.y] - world[v.x];
+                glm::vec3 e2 = world[v.z] - world[v.x];
+                glm::vec3 n = glm::cross(e1, e2);
+                float area2 = glm::dot(n, n);
+                float scale2 = glm::dot(e1, e1) * glm::dot(e2, e2);
+                keep[f] = area2 > 1e-14f * scale2 && std::isfinite(area2) && std::isfinite(scale2);
+                kept[c + 1] += keep[f];
+            }
+        }
+    });
+    for (std::size_t c = 0; c < chunks; ++c) {
+        kept[c + 1] += kept[c];
     }
-    if (object.count > 0) {
-        objects.push_back(object);
+    std::size_t firstTriangle = triangles.size();
+    std::size_t firstAttributes = triangleAttributes.size();
+    triangles.resize(firstTriangle + kept[chunks]);
+    if (attributed) {
+        triangleAttributes.resize(firstAttributes + kept[chunks]);
+    }
+    parallelFor(chunks, 1, [&](std::size_t a, std::size_t b) {
+        for (std::size_t c = a; c < b; ++c) {
+            std::size_t out = kept[c];
+            for (std::size_t f = c * kChunk; f < std::min(count, (c + 1) * kChunk); ++f) {
+                if (!keep[f]) {
+                    continue;
+                }
+                glm::uvec3 v = mesh.triangles[f];
+                if (mirrors) {
+                    std::swap(v.y, v.z);  // a mirror image reverses the winding: keep the front the front
+                }
+                Triangle& t = triangles[firstTriangle + out];
+                t.v0 = world[v.x];
+                t.v1 = world[v.y];
+                t.v2 = world[v.z];
+                t.material = mesh.materials[f];
+                t.attributes = NONE;
+                t.pad0 = 0.0f;
+                if (attributed) {
+                    TriangleAttributes attributes{};
+                    if (hasNormals && usableNormal[v.x] && usableNormal[v.y] && usableNormal[v.z]) {
+                        attributes.normal0 = normals[v.x];
+                        attributes.normal1 = normals[v.y];
+                        attributes.normal2 = normals[v.z];
+                        attributes.flags |= ATTRIBUTE_NORMALS;
+                    }
+                    if (hasTexcoords) {
+                        attributes.s0 = mesh.texcoords[v.x].x;
+                        attributes.t0 = mesh.texcoords[v.x].y;
+                        attributes.s1 = mesh.texcoords[v.y].x;
+                        attributes.t1 = mesh.texcoords[v.y].y;
+                        attributes.s2 = mesh.texcoords[v.z].x;
+                        attributes.t2 = mesh.texcoords[v.z].y;
+                        attributes.flags |= ATTRIBUTE_TEXCOORDS;
+                    }
+                    t.attributes = std::uint32_t(firstAttributes + out);
+                    triangleAttributes[firstAttributes + out] = attributes;
+                }
+                out += 1;
+            }
+        }
+    });
+    droppedTriangles += count - kept[chunks];
+    if (kept[chunks] > 0) {
+        objects.push_back({std::uint32_t(firstTriangle), std::uint32_t(kept[chunks])});
     }
 }
 

@@ -66,7 +66,8 @@ protected:
         plan.scratchBytes = plan.elements[BINDING_ACCUMULATION] * kHostBytesPerPixel;
     }
 
-    void uploadScene(const Scene& scene, const BufferPlan&) override { scene_ = scene; }
+    // The scene stays where the Backend keeps it; the stages read its arrays in place.
+    void uploadScene(const Scene& scene, const BufferPlan&) override { scene_ = &scene; }
 
     // Buffers whose size is unchanged are kept (a grown photon map keeps the accumulated image);
     // the others are freed before any is allocated, so that old and new need not fit together.
@@ -116,7 +117,7 @@ protected:
 
     void readBuffer(std::uint32_t binding, std::uint64_t offset, std::uint64_t bytes, void* data) override {
         const void* source = binding >= 1 && bufferInfo(binding).size == BUFFER_PER_SCENE
-                                 ? sceneArray(scene_, binding).data
+                                 ? sceneArray(*scene_, binding).data
                                  : buffers_.data(binding);
         std::memcpy(data, static_cast<const char*>(source) + offset, bytes);
     }
@@ -128,7 +129,7 @@ private:
             pointers[info.binding] = buffers_.data(info.binding);
         }
         pointBindings(bindings_, pointers);
-        bindSceneArrays(bindings_, scene_);
+        bindSceneArrays(bindings_, *scene_);
         bindings_.params = params;
         std::fill(bindings_.counters, bindings_.counters + COUNTER_COUNT, 0u);
     }
@@ -183,7 +184,7 @@ private:
         });
     }
 
-    Scene scene_;
+    const Scene* scene_ = nullptr;
     HostBuffers buffers_;
     Bindings bindings_{};
     std::size_t pixels_ = 0;

@@ -232,7 +232,7 @@ TEST(SceneLoaderErrors, UnknownType) {
     EXPECT_EQ(errorOf(sceneWith("materials", R"({"gold": {"type": "metal"}})")),
               "x.json: /materials/gold/type: unknown material type 'metal' (expected diffuse|mirror|glass|glossy|reflective)");
     EXPECT_EQ(objectError(R"({"type": "cube", "material": "white"})"),
-              "x.json: /objects/0/type: unknown object type 'cube' (expected sphere|plane|quad|triangle|box)");
+              "x.json: /objects/0/type: unknown object type 'cube' (expected sphere|plane|quad|triangle|box|mesh)");
 }
 
 TEST(SceneLoaderErrors, UnknownMaterial) {
