@@ -1,0 +1,204 @@
+// The bounding volume hierarchy against brute force: the nearest hit of random rays, and whether
+// shadow rays are blocked, equal testing every primitive one by one, over random triangle soups
+// (with spheres, quads and planes among them) and over every shipped scene. And the hierarchy's
+// shape: every primitive in exactly one leaf, every child's box holding its primitives.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <random>
+
+#include "core/scene_loader.h"
+#include "shared/intersect.h"
+#include "test_util.h"
+
+namespace photon {
+namespace {
+
+// The nearest hit by testing every primitive (the traversal's reference).
+TraceResult bruteForce(const Bindings& b, const Ray& ray) {
+    TraceResult r;
+    r.t = ray.tMax;
+    r.kind = NONE;
+    r.index = NONE;
+    RayFrame frame = makeRayFrame(ray);
+    for (uint i = 0; i < b.params.scene.planeCount; ++i) {
+        float t = intersectPlane(ray, b.planes[i].normal, b.planes[i].offset, r.t);
+        if (t < r.t) {
+            r = {t, PRIM_PLANE, i, 0.0f, 0.0f};
+        }
+    }
+    uint counts[3] = {b.params.scene.sphereCount, b.params.scene.quadCount, b.params.scene.triangleCount};
+    uint kinds[3] = {PRIM_SPHERE, PRIM_QUAD, PRIM_TRIANGLE};
+    for (int k = 0; k < 3; ++k) {
+        for (uint i = 0; i < counts[k]; ++i) {
+            float b1;
+            float b2;
+            float t = intersectPrimitive(b, (kinds[k] << PRIMITIVE_INDEX_BITS) | i, ray, frame, r.t, b1, b2);
+            if (t < r.t) {
+                r = {t, kinds[k], i, b1, b2};
+            }
+        }
+    }
+    return r;
+}
+
+// Random rays from inside and around the scene's bounds; returns the rays whose hits differ.
+int compareWithBruteForce(const Scene& scene, int rays, std::uint32_t seed) {
+    test::SceneBindings sb(scene);
+    const Bindings& b = sb.bindings;
+    std::mt19937 random(seed);
+    glm::vec3 lo = sb.scene.boundsMin;
+    glm::vec3 extent = sb.scene.boundsMax - sb.scene.boundsMin;
+    std::uniform_real_distribution<float> u(-0.25f, 1.25f);
+    std::normal_distribution<float> g(0.0f, 1.0f);
+    int differing = 0;
+    for (int i = 0; i < rays; ++i) {
+        glm::vec3 origin = lo + extent * glm::vec3(u(random), u(random), u(random));
+        glm::vec3 d(g(random), g(random), g(random));
+        if (glm::dot(d, d) < 1e-6f) {
+            continue;
+        }
+        float tMax = i % 3 == 0 ? glm::length(extent) * 0.5f : FLOAT_MAX;
+        Ray ray = makeRay(origin, glm::normalize(d), tMax);
+        TraceResult expected = bruteForce(b, ray);
+        TraceResult actual = traceRay(b, ray, QUERY_CLOSEST);
+        bool any = traceRay(b, ray, QUERY_ANY).kind != NONE;
+        bool same = actual.kind == expected.kind && actual.t == expected.t &&
+                    (actual.index == expected.index || actual.t == expected.t);
+        if (!same || any != (expected.kind != NONE)) {
+            if (differing < 5) {
+                ADD_FAILURE() << "ray " << i << ": traversal kind " << actual.kind << " index " << actual.index << " t "
+                              << actual.t << "; brute force kind " << expected.kind << " index " << expected.index
+                              << " t " << expected.t << "; any " << any;
+            }
+            differing += 1;
+        }
+    }
+    return differing;
+}
+
+Scene randomSoup(std::size_t triangles, std::uint32_t seed) {
+    std::mt19937 random(seed);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    Scene s;
+    std::uint32_t m = s.addMaterial("m", makeDiffuse(glm::vec3(0.5f)));
+    Mesh mesh;
+    for (std::size_t i = 0; i < triangles; ++i) {
+        glm::vec3 c(u(random), u(random), u(random));
+        float size = 0.02f + 0.3f * std::abs(u(random)) * std::abs(u(random));
+        for (int k = 0; k < 3; ++k) {
+            mesh.positions.push_back(c + size * glm::vec3(u(random), u(random), u(random)));
+        }
+        auto v = std::uint32_t(3 * i);
+        mesh.triangles.emplace_back(v, v + 1, v + 2);
+        mesh.materials.push_back(m);
+    }
+    s.addMesh(mesh, glm::mat4(1.0f));
+    for (int i = 0; i < 5; ++i) {
+        s.addSphere(glm::vec3(u(random), u(random), u(random)), 0.1f + 0.2f * std::abs(u(random)), m);
+        s.addQuad(glm::vec3(u(random), u(random), u(random)), glm::vec3(u(random), 0.3f, 0.1f),
+                  glm::vec3(0.1f, u(random), 0.4f), m);
+    }
+    s.addPlane(glm::vec3(0.0f, -1.5f, 0.0f), glm::vec3(0.1f, 1.0f, 0.0f), m);
+    s.addPointLight(glm::vec3(0.0f, 3.0f, 0.0f), glm::vec3(1.0f));
+    s.finalize();
+    return s;
+}
+
+TEST(Bvh, TraversalEqualsBruteForceOnRandomSoups) {
+    for (std::size_t n : {0u, 1u, 3u, 50u, 2000u, 40000u}) {
+        SCOPED_TRACE(std::to_string(n) + " triangles");
+        Scene s = randomSoup(n, std::uint32_t(n) + 1);
+        EXPECT_EQ(compareWithBruteForce(s, n > 10000 ? 2000 : 20000, 7), 0);
+    }
+}
+
+TEST(Bvh, TraversalEqualsBruteForceOnEveryShippedScene) {
+    for (const auto& entry : std::filesystem::directory_iterator(test::scenesDir())) {
+        std::string ext = entry.path().extension().string();
+        if (ext != ".json" && ext != ".glb" && ext != ".gltf") {
+            continue;
+        }
+        SCOPED_TRACE(entry.path().string());
+        Scene s = loadSceneFile(entry.path().string());
+        EXPECT_EQ(compareWithBruteForce(s, 20000, 3), 0);
+    }
+}
+
+// Every primitive in exactly one leaf, inside every box on its way from the root.
+TEST(Bvh, EveryPrimitiveOnceInsideItsBoxes) {
+    Scene s = randomSoup(5000, 9);
+    ASSERT_FALSE(s.bvhNodes.empty());
+    std::vector<int> seen(s.spheres.size() + s.quads.size() + s.triangles.size(), 0);
+    auto slot = [&](std::uint32_t ref) {
+        std::uint32_t kind = primitiveKind(ref);
+        std::uint32_t index = primitiveIndex(ref);
+        return kind == PRIM_SPHERE ? index : kind == PRIM_QUAD ? s.spheres.size() + index : s.spheres.size() + s.quads.size() + index;
+    };
+    auto inside = [&](std::uint32_t ref, glm::vec3 lo, glm::vec3 hi) {
+        std::uint32_t kind = primitiveKind(ref);
+        std::uint32_t i = primitiveIndex(ref);
+        std::vector<glm::vec3> points;
+        if (kind == PRIM_SPHERE) {
+            points = {s.spheres[i].center - glm::vec3(s.spheres[i].radius), s.spheres[i].center + glm::vec3(s.spheres[i].radius)};
+        } else if (kind == PRIM_QUAD) {
+            const Quad& q = s.quads[i];
+            points = {q.corner, q.corner + q.edgeU, q.corner + q.edgeV, q.corner + q.edgeU + q.edgeV};
+        } else {
+            points = {s.triangles[i].v0, s.triangles[i].v1, s.triangles[i].v2};
+        }
+        for (glm::vec3 p : points) {
+            if (glm::any(glm::lessThan(p, lo)) || glm::any(glm::greaterThan(p, hi))) {
+                return false;
+            }
+        }
+        return true;
+    };
+    std::vector<std::uint32_t> stack{0};
+    std::size_t outside = 0;
+    while (!stack.empty()) {
+        const BvhNode& n = s.bvhNodes[stack.back()];
+        stack.pop_back();
+        for (int c = 0; c < 2; ++c) {
+            glm::vec3 lo = c ? n.lowerB : n.lowerA;
+            glm::vec3 hi = c ? n.upperB : n.upperA;
+            std::uint32_t count = c ? n.countB : n.countA;
+            std::uint32_t child = c ? n.childB : n.childA;
+            if (lo.x == FLOAT_MAX) {
+                continue;
+            }
+            if (count == 0) {
+                stack.push_back(child);
+                continue;
+            }
+            for (std::uint32_t k = child; k < child + count; ++k) {
+                seen[slot(s.primitiveRefs[k])] += 1;
+                outside += inside(s.primitiveRefs[k], lo, hi) ? 0 : 1;
+            }
+        }
+    }
+    EXPECT_EQ(outside, 0u);
+    EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), std::ptrdiff_t(seen.size()));
+    EXPECT_LT(s.bvh.depth, BVH_STACK_SIZE);
+    std::printf("bvh: %u primitives, %u nodes, %u leaves, depth %u, SAH cost %.1f\n", s.bvh.primitives, s.bvh.nodes,
+                s.bvh.leaves, s.bvh.depth, s.bvh.sahCost);
+}
+
+// A million triangles in one spot: the hierarchy falls back to median splits and stays within
+// the traversal's stack.
+TEST(Bvh, CoincidentPrimitivesStayShallow) {
+    Scene s;
+    std::uint32_t m = s.addMaterial("m", makeDiffuse(glm::vec3(0.5f)));
+    Mesh mesh;
+    mesh.positions = {glm::vec3(0, 0, 0), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0)};
+    mesh.triangles.assign(200000, glm::uvec3(0, 1, 2));
+    mesh.materials.assign(200000, m);
+    s.addMesh(mesh, glm::mat4(1.0f));
+    s.addPointLight(glm::vec3(0, 0, 3), glm::vec3(1.0f));
+    s.finalize();
+    EXPECT_LT(s.bvh.depth, BVH_STACK_SIZE);
+    EXPECT_EQ(compareWithBruteForce(s, 50, 1), 0);
+}
+
+}  // namespace
+}  // namespace photon
