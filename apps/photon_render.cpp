@@ -17,6 +17,7 @@
 #include "apps/program.h"
 #include "apps/progress.h"
 #include "apps/render_options.h"
+#include "apps/scene_stats.h"
 #include "core/error.h"
 #include "core/output_file.h"
 #include "core/scene_loader.h"
@@ -71,6 +72,7 @@ void writeStats(const std::string& path, Backend& backend, const std::vector<Sta
     j["backend"] = backend.name();
     j["device"] = backend.deviceName();
     j["scene"] = backend.scene().name;
+    j["scene_stats"] = sceneStatsJson(backend.scene());
     j["width"] = s.width;
     j["height"] = s.height;
     j["frames"] = frames.size();
@@ -105,7 +107,7 @@ int run(int argc, char** argv) {
     bool quiet = false;
     double seconds = 0.0;
     RenderOptions options;
-    app.add_option("scene", scenePath, "Scene file (JSON); the built-in Cornell box if omitted");
+    app.add_option("scene", scenePath, "Scene file (JSON) or model (.obj, .gltf, .glb); the built-in Cornell box if omitted");
     app.add_option("--backend", backendName, "auto|cpu|cuda|vulkan (auto: a GPU if there is one, else the CPU)")
         ->check(CLI::IsMember({"auto", "cpu", "cuda", "vulkan"}));
     app.add_option("--device", backendOptions.device, "GPU to use: index or part of its name");
@@ -131,6 +133,10 @@ int run(int argc, char** argv) {
         checkOutputPath(statsPath, "stats");
     }
 
+    if (scene.droppedTriangles > 0 && !quiet) {
+        std::fprintf(stderr, "%s: %llu triangles without area (or not finite) dropped\n", scene.name.c_str(),
+                     static_cast<unsigned long long>(scene.droppedTriangles));
+    }
     std::unique_ptr<Backend> backend = createBackend(backendName, backendOptions);
     backend->setScene(std::move(scene));
     backend->setSettings(settings);

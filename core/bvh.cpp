@@ -95,8 +95,10 @@ public:
         float lo = clo[axis];
         float scale = float(kBins) * (1.0f - 1e-6f) / extent[axis];
         auto binOf = [&](const Item& item) {
-            float c = lane(doubledCentroid(item), axis);
-            return std::clamp(int((c - lo) * scale), 0, kBins - 1);
+            // Near the float limit a doubled centroid overflows to ±inf and (c - lo) · scale can be
+            // NaN: such items go to the first bin, never through an undefined conversion.
+            float x = (lane(doubledCentroid(item), axis) - lo) * scale;
+            return x >= 0.0f ? (x < float(kBins - 1) ? int(x) : kBins - 1) : 0;
         };
         // Bin every item, or a regular sample of a large node (the split need only be nearly best;
         // the partition below measures the children exactly).

@@ -9,6 +9,10 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
+// Images are decoded by texture_loader.cpp (keepImage below), never by tinygltf's stb copy: the
+// same macros as loader_packages.cpp, so that the fuzz build's single tinygltf agrees.
+#define TINYGLTF_NO_STB_IMAGE
+#define TINYGLTF_NO_STB_IMAGE_WRITE
 #include <tiny_gltf.h>
 
 #include "error.h"
@@ -27,6 +31,7 @@ struct Loader {
     Scene& scene;
     const std::string& path;
     const ModelOptions& options;
+    const FileReader& read;
     tinygltf::Model model;
     std::vector<std::uint32_t> materials;  // scene material of each glTF material, NONE until used
     std::vector<std::uint32_t> textures;   // scene texture of each glTF texture, NONE until used
@@ -200,6 +205,10 @@ struct Loader {
         }
         const tinygltf::Image& image = model.images[std::size_t(t.source)];
         std::string bytes(image.image.begin(), image.image.end());
+        if (bytes.empty() && !image.uri.empty() && image.uri.rfind("data:", 0) != 0) {
+            // tinygltf keeps going past an external image it could not read: read it again for the reason.
+            bytes = read(folderOf(path) + image.uri, "image");
+        }
         textures[std::size_t(index)] = addImageTexture(scene, bytes, wrapS, wrapT, path + ": " + at("images", std::size_t(t.source)));
         return textures[std::size_t(index)];
     }
@@ -523,7 +532,7 @@ bool keepImage(tinygltf::Image* image, const int, std::string*, std::string*, in
 
 ModelExtras addGltfModel(Scene& scene, const std::string& path, const std::string& bytes, const ModelOptions& options,
                          const FileReader& read) {
-    Loader loader{scene, path, options, {}, {}, {}, NONE, {}};
+    Loader loader{scene, path, options, read, {}, {}, {}, NONE, {}};
     tinygltf::TinyGLTF gltf;
     FileSystem fs{read, folderOf(path)};
     gltf.SetFsCallbacks({fileExists, expandPath, readWholeFile, writeWholeFile, &fs});

@@ -38,6 +38,9 @@ void checkObjText(const std::string& path, const std::string& text) {
         std::string line = text.substr(start, end == std::string::npos ? std::string::npos : end - start);
         start = end == std::string::npos ? text.size() : end + 1;
         lineNumber += 1;
+        if (line.find('\0') != std::string::npos) {
+            throw InputError(path + ": line " + std::to_string(lineNumber) + ": a NUL byte: not a text file");
+        }
         std::size_t at = 0;
         std::string keyword;
         if (!nextToken(line, at, keyword) || keyword[0] == '#') {
@@ -155,10 +158,7 @@ Material fromMtl(const tinyobj::material_t& m) {
     } else {
         out = makeDiffuse(kd);
     }
-    if (anyPositive(ke)) {
-        out = out.type == MATERIAL_DIFFUSE && !anyPositive(kd) ? makeEmitter(ke) : out;
-        out.emission = ke;
-    }
+    out.emission = ke;  // any surface may emit; finalize() makes emitting triangles an area light
     return out;
 }
 
@@ -200,15 +200,26 @@ ModelExtras addObjModel(Scene& scene, const std::string& path, const std::string
 
     // Vertices: one for each distinct (position, texture coordinate, normal) corner.
     Mesh mesh;
-    std::unordered_map<std::uint64_t, std::uint32_t> corners;
+    struct CornerHash {
+        std::size_t operator()(const glm::ivec3& c) const {
+            return std::size_t((std::uint64_t(std::uint32_t(c.x)) * 0x9E3779B97F4A7C15ull) ^
+                               (std::uint64_t(std::uint32_t(c.y)) * 0xC2B2AE3D27D4EB4Full) ^ std::uint64_t(std::uint32_t(c.z)));
+        }
+    };
+    std::unordered_map<glm::ivec3, std::uint32_t, CornerHash> corners;
     bool texcoords = !attrib.texcoords.empty();
     bool normals = !attrib.normals.empty();
     auto vertexOf = [&](const tinyobj::index_t& index) {
-        std::uint64_t key = (std::uint64_t(std::uint32_t(index.vertex_index)) * 0x9E3779B97F4A7C15ull) ^
-                            (std::uint64_t(std::uint32_t(index.texcoord_index + 1)) << 32) ^
-                            std::uint64_t(std::uint32_t(index.normal_index + 1));
+        glm::ivec3 key(index.vertex_index, index.texcoord_index, index.normal_index);
         auto [it, inserted] = corners.emplace(key, std::uint32_t(mesh.positions.size()));
         if (inserted) {
+            // checkObjText has reported bad indices with their line; this holds wherever
+            // tinyobjloader reads a line otherwise than it does.
+            if (index.vertex_index < 0 || 3 * std::size_t(index.vertex_index) + 2 >= attrib.vertices.size() ||
+                (index.texcoord_index >= 0 && 2 * std::size_t(index.texcoord_index) + 1 >= attrib.texcoords.size()) ||
+                (index.normal_index >= 0 && 3 * std::size_t(index.normal_index) + 2 >= attrib.normals.size())) {
+                throw InputError(path + ": a face refers to a vertex, texture coordinate or normal that does not exist");
+            }
             const tinyobj::real_t* v = &attrib.vertices[3 * std::size_t(index.vertex_index)];
             mesh.positions.emplace_back(float(v[0]), float(v[1]), float(v[2]));
             if (texcoords) {

@@ -24,6 +24,7 @@
 #include "model_loader.h"
 #include "setting_specs.h"
 #include "shared/constants.h"
+#include "shared/math.h"
 
 namespace photon {
 namespace {
@@ -63,18 +64,18 @@ CameraDesc readCamera(const Node& node) {
     return camera;
 }
 
-Material readMaterial(const Node& node) {
+Material readSurface(const Node& node) {
     const std::string& type = node["type"].string();
     if (type == "diffuse") {
-        node.allowKeys({"type", "albedo"});
+        node.allowKeys({"type", "emission", "albedo"});
         return makeDiffuse(node["albedo"].rgb(kUnit));
     }
     if (type == "mirror") {
-        node.allowKeys({"type", "reflectance"});
+        node.allowKeys({"type", "emission", "reflectance"});
         return makeMirror(node.has("reflectance") ? node["reflectance"].rgb(kUnit) : glm::vec3(1.0f));
     }
     if (type == "glass") {
-        node.allowKeys({"type", "ior", "tint"});
+        node.allowKeys({"type", "emission", "ior", "tint"});
         float ior = node.has("ior") ? node["ior"].number(kPositive) : 1.5f;
         return makeGlass(ior, node.has("tint") ? node["tint"].rgb(kUnit) : glm::vec3(1.0f));
     }
@@ -83,9 +84,9 @@ Material readMaterial(const Node& node) {
         bool glossy = type == "glossy";
         const char* coat = glossy ? "specular" : "reflectance";
         if (glossy) {
-            node.allowKeys({"type", "albedo", "specular", "roughness"});
+            node.allowKeys({"type", "emission", "albedo", "specular", "roughness"});
         } else {
-            node.allowKeys({"type", "albedo", "reflectance"});
+            node.allowKeys({"type", "emission", "albedo", "reflectance"});
         }
         glm::vec3 albedo = node["albedo"].rgb(kUnit);
         glm::vec3 specular = node[coat].rgb(kUnit);
@@ -104,6 +105,16 @@ Material readMaterial(const Node& node) {
     node["type"].fail("unknown material type '" + type + "' (expected diffuse|mirror|glass|glossy|reflective)");
 }
 
+// Any material may also emit (radiance from its front): triangles and meshes of an emitting
+// material become an area light (Scene::finalize).
+Material readMaterial(const Node& node) {
+    Material m = readSurface(node);
+    if (node.has("emission")) {
+        m.emission = node["emission"].rgb(kNonNegative);
+    }
+    return m;
+}
+
 void readMaterials(Scene& scene, const Node& node) {
     for (const auto& [name, material] : node.members()) {
         bool reserved = name.compare(0, 5, "light") == 0 && name.size() > 5 &&
@@ -120,6 +131,16 @@ std::uint32_t materialOf(const Scene& scene, const Node& object) {
     std::uint32_t material = scene.findMaterial(ref.string());
     if (material == NONE) {
         ref.fail("unknown material '" + ref.string() + "'");
+    }
+    return material;
+}
+
+// Spheres, planes, quads and boxes do not emit: area lights of those shapes are lights.
+std::uint32_t nonEmittingMaterialOf(const Scene& scene, const Node& object) {
+    std::uint32_t material = materialOf(scene, object);
+    if (!isBlack(scene.materials[material].emission)) {
+        object["material"].fail("'" + object["material"].string() + "' emits, and only triangles and meshes emit " +
+                                "(a sphere or quad that shines is a light: see \"lights\")");
     }
     return material;
 }
@@ -206,17 +227,17 @@ void readObject(Scene& scene, const Node& node, const std::string& folder) {
     const std::string& type = node["type"].string();
     if (type == "sphere") {
         node.allowKeys({"type", "material", "center", "radius"});
-        std::uint32_t material = materialOf(scene, node);
+        std::uint32_t material = nonEmittingMaterialOf(scene, node);
         glm::vec3 center = node["center"].vec3();
         scene.addSphere(center, node["radius"].number(kPositive), material);
     } else if (type == "plane") {
         node.allowKeys({"type", "material", "point", "normal"});
-        std::uint32_t material = materialOf(scene, node);
+        std::uint32_t material = nonEmittingMaterialOf(scene, node);
         glm::vec3 point = node["point"].vec3();
         scene.addPlane(point, node["normal"].direction(), material);
     } else if (type == "quad") {
         node.allowKeys({"type", "material", "corner", "edge_u", "edge_v"});
-        std::uint32_t material = materialOf(scene, node);
+        std::uint32_t material = nonEmittingMaterialOf(scene, node);
         glm::vec3 corner = node["corner"].vec3();
         glm::vec3 edgeU = node["edge_u"].vec3();
         glm::vec3 edgeV = node["edge_v"].vec3();
@@ -239,7 +260,7 @@ void readObject(Scene& scene, const Node& node, const std::string& folder) {
         readMesh(scene, node, folder);
     } else if (type == "box") {
         node.allowKeys({"type", "material", "min", "max"});
-        std::uint32_t material = materialOf(scene, node);
+        std::uint32_t material = nonEmittingMaterialOf(scene, node);
         glm::vec3 lo = node["min"].vec3();
         glm::vec3 hi = node["max"].vec3();
         if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z)) {

@@ -146,6 +146,20 @@ TEST(SceneLoader, AreaLightsAddTheirSurface) {
     EXPECT_EQ(scene.materialNames.back(), "light1");
 }
 
+TEST(SceneLoader, EmittingTrianglesAreAnAreaLight) {
+    std::string text = sceneWith("materials", R"({"white": {"type": "diffuse", "albedo": [0.8, 0.8, 0.8]},
+        "panel": {"type": "diffuse", "albedo": [0, 0, 0], "emission": [2, 2, 1]}})");
+    text.replace(text.find("\"objects\": [") + 12, 0,
+                 R"({"type": "triangle", "vertices": [[0, 2, 0], [0, 2, 1], [1, 2, 0]], "material": "panel"}, )");
+    Scene scene = load(text);
+    scene.finalize();
+    ASSERT_EQ(scene.emissiveTriangles.size(), 1u);
+    const Light& panel = scene.lights.back();
+    EXPECT_EQ(panel.type, LIGHT_TRIANGLES);
+    EXPECT_FLOAT_EQ(panel.power.x, 2.0f * PI * 0.5f);  // Φ = π L · area
+    EXPECT_FLOAT_EQ(panel.power.z, 1.0f * PI * 0.5f);
+}
+
 TEST(SceneLoader, RenderSettingsOverrideDefaults) {
     std::string text = sceneWith("render", R"({"width": 320, "height": 200.0, "estimator": "knn", "k": 64,
                                               "tonemap": "reinhard", "seed": 4294967295, "exposure": -1.5})");
@@ -238,6 +252,17 @@ TEST(SceneLoaderErrors, UnknownType) {
 TEST(SceneLoaderErrors, UnknownMaterial) {
     EXPECT_EQ(objectError(R"({"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "steel"})"),
               "x.json: /objects/0/material: unknown material 'steel'");
+}
+
+TEST(SceneLoaderErrors, OnlyTrianglesEmit) {
+    std::string materials = R"({"white": {"type": "diffuse", "albedo": [0.8, 0.8, 0.8]},
+        "hot": {"type": "mirror", "emission": [1, 1, 1]}})";
+    std::string text = sceneWith("materials", materials);
+    text.replace(text.find("\"material\": \"white\""), 19, "\"material\": \"hot\"");
+    EXPECT_EQ(errorOf(text), "x.json: /objects/0/material: 'hot' emits, and only triangles and meshes emit (a sphere or "
+                             "quad that shines is a light: see \"lights\")");
+    EXPECT_EQ(errorOf(sceneWith("materials", R"({"white": {"type": "diffuse", "albedo": [1, 1, 1], "emission": [-1, 0, 0]}})")),
+              "x.json: /materials/white/emission/0: must be non-negative (got -1)");
 }
 
 TEST(SceneLoaderErrors, ReservedMaterialName) {

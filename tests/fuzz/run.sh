@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds the fuzz targets with clang (AddressSanitizer, UBSan, fuzzer coverage over the core and the
 # CPU backend) in their own build directory and runs each for $1 seconds (default 60), seeded from
-# scenes/*.json and the committed corpus in tests/fuzz/corpus/. Exits non-zero if libFuzzer finds a
+# the shipped scenes (scenes/*.json, *.obj) and the committed corpus in tests/fuzz/corpus/. Exits non-zero if libFuzzer finds a
 # crash, a sanitizer report, a leak or a slow input; the input that did it is left in
 # <build>/fuzz-artifacts/<target>.
 # Usage: tests/fuzz/run.sh [seconds] [build-dir]   (build-dir defaults to build-fuzz)
@@ -15,15 +15,19 @@ sanitize="-fsanitize=address,undefined,fuzzer-no-link -fno-sanitize-recover=all 
 CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_C_FLAGS="$sanitize" -DCMAKE_CXX_FLAGS="$sanitize" \
   -DPHOTON_FUZZ=ON -DPHOTON_CUDA=OFF -DPHOTON_VULKAN=OFF -DPHOTON_VIEWER=OFF -DPHOTON_TESTS=OFF
-cmake --build "$build" --target scene_loader_fuzz render_fuzz --parallel "$(nproc)"
+targets=(scene_loader_fuzz render_fuzz obj_loader_fuzz gltf_loader_fuzz)
+cmake --build "$build" --target "${targets[@]}" --parallel "$(nproc)"
 
 status=0
-for target in scene_loader_fuzz render_fuzz; do
+for target in "${targets[@]}"; do
   corpus="$build/fuzz-corpus/$target"
   artifacts="$build/fuzz-artifacts/$target"
   rm -rf "$corpus" "$artifacts"
   mkdir -p "$corpus" "$artifacts"
-  cp "$root"/scenes/*.json "$corpus"/
+  case "$target" in
+    scene_loader_fuzz | render_fuzz) cp "$root"/scenes/*.json "$corpus"/ ;;
+    obj_loader_fuzz) cp "$root"/scenes/*.obj "$corpus"/ ;;
+  esac
   if [ -d "$root/tests/fuzz/corpus/$target" ]; then
     cp "$root/tests/fuzz/corpus/$target"/* "$corpus"/
   fi
