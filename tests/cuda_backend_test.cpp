@@ -144,7 +144,7 @@ TEST_F(CudaVsCpu, FastBuildImagesWithinHalfAPercent) {
 
 TEST_F(CudaVsCpu, EveryShippedSceneRendersWithoutNaN) {
     for (const auto& entry : std::filesystem::directory_iterator(test::scenesDir())) {
-        if (entry.path().extension() != ".json") {
+        if (entry.path().extension() != ".json" && entry.path().extension() != ".glb") {
             continue;
         }
         SCOPED_TRACE(entry.path().string());
@@ -158,6 +158,17 @@ TEST_F(CudaVsCpu, EveryShippedSceneRendersWithoutNaN) {
         cuda->setSettings(s);
         cuda->renderFrame();
         EXPECT_TRUE(allFinite(cuda->image()));
+    }
+}
+
+// Meshes through the BVH, textures, smooth normals, emissive triangles and directional light: the
+// parity build traverses exactly as the CPU does.
+TEST_F(CudaVsCpu, MeshScenesInTheParityBuild) {
+    for (const char* file : {"bunny.json", "textured.glb"}) {
+        Scene scene = loadSceneFile(test::scenesDir() + "/" + file);
+        RenderSettings s = small();
+        s.photons = 30000;
+        compare(scene, s, std::string("cuda-parity-") + file, true);
     }
 }
 

@@ -10,6 +10,7 @@
 
 #include "check.h"
 #include "core/error.h"
+#include "shared/bindings.h"
 
 namespace photon::vk {
 namespace {
@@ -64,6 +65,13 @@ std::string checkDevice(DeviceCandidate& c, VkSurfaceKHR surface, const std::vec
     if (!(subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) ||
         !(subgroup.supportedOperations & VK_SUBGROUP_FEATURE_ARITHMETIC_BIT)) {
         return "no subgroup arithmetic in compute shaders";
+    }
+    // Every stage binds the whole buffer list of shared/bindings.h in one set.
+    const VkPhysicalDeviceLimits& limits = c.properties.limits;
+    std::uint32_t storageBuffers = std::min(limits.maxPerStageDescriptorStorageBuffers, limits.maxDescriptorSetStorageBuffers);
+    if (storageBuffers < kBufferCount) {
+        return "binds at most " + std::to_string(storageBuffers) + " storage buffers to a stage, and Photon's stages bind " +
+               std::to_string(kBufferCount);
     }
     VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &features13};
