@@ -6,6 +6,8 @@
 //   photon-bench --backends cpu,cuda --scenes cornell --resolutions 640x480,1920x1080
 //                --photons 1000000 --frames 20 --warmup 3 --json bench.json --csv bench.csv
 //   photon-bench --grid-sweep 1000000,2000000,4000000,8000000,16000000   (grid build rate)
+//   photon-bench --backends cuda --scenes mesh:10000,mesh:1000000,mesh:10000000 --primary-rays
+//                (cost over triangle count: BVH build, primary rays, photon paths, frames)
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -19,10 +21,14 @@
 #include "apps/backends.h"
 #include "apps/program.h"
 #include "apps/render_options.h"
+#include "apps/scene_stats.h"
 #include "core/error.h"
 #include "core/output_file.h"
 #include "core/setting_specs.h"
+#include "core/buffers.h"
+#include "core/parallel.h"
 #include "core/scene_loader.h"
+#include "tools/bench_scenes.h"
 #ifdef PHOTON_HAVE_CUDA
 #include "cuda/cuda_backend.h"
 #endif
@@ -45,6 +51,8 @@ struct Row {
     double frameMs = 0.0;        // median of per-frame totals
     double storedPhotons = 0.0;  // both maps, last frame
     double firstImageMs = 0.0;   // backend creation → first image on the host
+    std::uint64_t triangles = 0;
+    double primaryRaysPerSecond = 0.0;  // --primary-rays, CUDA
 };
 
 double median(std::vector<double> v) {
@@ -75,11 +83,37 @@ std::pair<std::uint32_t, std::uint32_t> parseResolution(const std::string& s) {
     return {w, h};
 }
 
+// "cornell" (built in), "mesh:N" and "mesh-glass:N" (tools/bench_scenes.h: N triangles), a
+// path with an extension (a scene or model file), or a name in the scenes folder.
 Scene sceneNamed(const std::string& name, const std::string& scenesDir) {
     if (name == "cornell") {
         return defaultScene();
     }
+    for (const char* prefix : {"mesh:", "mesh-glass:"}) {
+        std::string p = prefix;
+        if (name.compare(0, p.size(), p) == 0) {
+            RenderSettings s;
+            setSetting(s, *findSetting("photons"), name.substr(p.size()), "--scenes");  // an integer in range
+            return tools::meshBenchScene(std::stoull(name.substr(p.size())), p == "mesh-glass:");
+        }
+    }
+    if (name.find('.') != std::string::npos) {
+        return loadSceneFile(name);
+    }
     return loadSceneFile(scenesDir + "/" + name + ".json");
+}
+
+// The scene's triangles and how its hierarchy was built.
+void printSceneCost(const std::string& name, const Scene& scene) {
+    nlohmann::json j = sceneStatsJson(scene);
+    const BvhStats& b = scene.bvh;
+    double rate = b.buildSeconds > 0 ? double(b.primitives) / b.buildSeconds / 1e6 : 0.0;
+    std::printf("  %s: %zu triangles, %u BVH primitives; BVH built in %.3f s (%.1f M primitives/s, %.2f M/s per core "
+                "on %zu), %u nodes, depth %u, SAH cost %.1f, %.0f bytes per triangle, scene %s\n",
+                name.c_str(), scene.triangles.size(), b.primitives, b.buildSeconds, rate,
+                rate / double(workerThreads()), std::size_t(workerThreads()), b.nodes, b.depth, b.sahCost,
+                j.value("bytes_per_triangle", 0.0), formatMiB(j["total_bytes"].get<std::uint64_t>()).c_str());
+    std::fflush(stdout);
 }
 
 double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
@@ -161,7 +195,9 @@ nlohmann::json toJson(const Row& r) {
             {"stored_photons", r.storedPhotons},
             {"photons_per_second", r.median.tracePhotons > 0 ? r.photons / r.median.tracePhotons * 1e3 : 0.0},
             {"grid_photons_per_second", r.median.buildGrid > 0 ? r.storedPhotons / r.median.buildGrid * 1e3 : 0.0},
-            {"first_image_ms", r.firstImageMs}};
+            {"first_image_ms", r.firstImageMs},
+            {"triangles", r.triangles},
+            {"primary_rays_per_second", r.primaryRaysPerSecond}};
 }
 
 void writeOutputs(const std::vector<Row>& rows, const std::string& jsonPath, const std::string& csvPath,
@@ -249,6 +285,7 @@ int run(int argc, char** argv) {
     std::uint32_t cpuFrames = 3;
     bool launchSweep = false;
     bool readback = false;
+    bool primaryRays = false;
     BackendOptions options;
     app.add_option("--backends", backends, "Comma-separated: cpu,cuda,vulkan");
     app.add_option("--scenes", scenes, "Comma-separated scene names (files in --scenes-dir; cornell is built in)");
@@ -263,6 +300,7 @@ int run(int argc, char** argv) {
                                    "(cell_size, gather_budget, radius, caustic_radius, caustic_fraction, estimator, ...)");
     app.add_option("--grid-sweep", gridSweep, "Comma-separated photon counts: grid build rate at 320x240");
     app.add_flag("--launch-sweep", launchSweep, "CUDA: sweep block shapes of every stage");
+    app.add_flag("--primary-rays", primaryRays, "CUDA: also time primary rays alone (nearest hit, no shading) per case");
     app.add_flag("--readback", readback, "CUDA: time reading the image back through pinned and pageable memory");
     app.add_option("--device", options.device, "GPU to use");
     app.add_option("--json", jsonPath, "Write the rows as JSON");
@@ -368,10 +406,21 @@ int run(int argc, char** argv) {
         bool cpu = backendName == "cpu";
         for (const std::string& sceneName : split(scenes)) {
             Scene scene = sceneNamed(sceneName, scenesDir);
+            printSceneCost(sceneName, scene);
             auto add = [&](const RenderSettings& s, const std::string& variant) {
                 Row r = measure(*backend, scene, s, cpu ? 1 : warmup, cpu ? cpuFrames : frames, created, rows.empty());
                 r.scene = sceneName;
                 r.variant = variant;
+                r.triangles = scene.triangles.size();
+#ifdef PHOTON_HAVE_CUDA
+                if (primaryRays && backendName == "cuda") {
+                    PrimaryRayTiming t = timeCudaPrimaryRays(*backend, 21);
+                    r.primaryRaysPerSecond = t.medianMs > 0 ? double(t.rays) / t.medianMs * 1e3 : 0.0;
+                    std::printf("  primary rays %ux%u: %.3f ms median of 21, %.2f G rays/s, %.1f%% hit\n", s.width,
+                                s.height, t.medianMs, r.primaryRaysPerSecond / 1e9,
+                                t.rays ? 100.0 * double(t.hits) / double(t.rays) : 0.0);
+                }
+#endif
                 if (processToFirstImage == 0.0) {
                     processToFirstImage =
                         r.firstImageMs + std::chrono::duration<double, std::milli>(created - kProcessStart).count();

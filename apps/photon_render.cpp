@@ -125,6 +125,14 @@ int run(int argc, char** argv) {
     Scene scene = app.count("scene") == 0 ? defaultScene() : loadSceneFile(scenePath);
     RenderSettings settings = scene.render;
     applyRenderOptions(app, options, settings);
+    // No length given anywhere: as long as a clean image takes on a small machine's CPU.
+    bool timed = app.count("--time") > 0;
+    bool framesGiven = isGiven(settings, "frames");
+    if (!timed && !framesGiven) {
+        timed = true;
+        seconds = kDefaultRenderSeconds;
+    }
+    chooseDefaults(settings, timed);
     validateSettings(settings);
     // Outputs that cannot be written fail now, not after the render.
     imageFormatFor(output);
@@ -144,8 +152,7 @@ int run(int argc, char** argv) {
     backend->prepare();
 
     // --time: frames until the time is spent; --frames, given with it, caps them.
-    bool timed = app.count("--time") > 0;
-    std::uint32_t maxFrames = timed && app.count("--frames") == 0 ? 0xffffffffu : settings.frames;
+    std::uint32_t maxFrames = timed && !framesGiven ? 0xffffffffu : settings.frames;
     std::vector<StageTimes> times;
     ProgressBar progress(timed ? 0 : settings.frames, timed ? seconds : 0.0, !quiet);
     double elapsed = 0.0;

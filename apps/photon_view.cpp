@@ -76,6 +76,7 @@ int run(int argc, char** argv) {
     o.scene = app.count("scene") == 0 ? defaultScene() : loadSceneFile(o.scenePath);
     o.settings = o.scene.render;
     applyRenderOptions(app, render, o.settings);
+    chooseDefaults(o.settings, true);  // the viewer accumulates while the view stays
     validateSettings(o.settings);
     if (o.view != viewer::DisplayView::Dots) {
         const viewer::DisplayView views[] = {viewer::DisplayView::Final, viewer::DisplayView::Direct,

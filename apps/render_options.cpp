@@ -29,7 +29,7 @@ void applyRenderOptions(const CLI::App& app, const RenderOptions& o, RenderSetti
             continue;
         }
         if (spec.kind == SettingKind::Flag) {
-            spec.set(settings, 1.0);
+            setSetting(settings, spec, "true", spec.flag);
         } else {
             setSetting(settings, spec, o.values.at(spec.flag), spec.flag);
         }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 #include "error.h"
 #include "setting_specs.h"
@@ -32,6 +33,7 @@ void Backend::setScene(Scene scene) {
     scene_ = std::move(scene);
     camera_ = scene_.camera;
     sceneDirty_ = true;
+    footprintsDirty_ = true;
     allocationDirty_ = true;
     frameIndex_ = 0;
     accumulated_ = 0;
@@ -41,6 +43,7 @@ void Backend::setSettings(const RenderSettings& settings) {
     settings_ = settings;
     std::fill(std::begin(grownCapacity_), std::end(grownCapacity_), 0u);
     allocationDirty_ = true;
+    footprintsDirty_ = true;
     frameIndex_ = 0;
     accumulated_ = 0;
 }
@@ -48,6 +51,7 @@ void Backend::setSettings(const RenderSettings& settings) {
 void Backend::setCamera(const CameraDesc& camera) {
     camera_ = camera;
     accumulated_ = 0;
+    footprintsDirty_ = true;
 }
 
 void Backend::resetAccumulation() { accumulated_ = 0; }
@@ -60,7 +64,7 @@ void Backend::prepare() {
         throw InputError("the scene has no lights");
     }
     validateSettings(settings_);
-    validateForScene(settings_, scene_);
+    measureRadii();
     PhotonBudget budget = planPhotons(scene_, settings_);
     for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
         budget.capacity[m] = std::max(budget.capacity[m], grownCapacity_[m]);
@@ -106,9 +110,24 @@ void Backend::renderFrame() {
     }
 }
 
+void Backend::measureRadii() {
+    if (!footprintsDirty_) {
+        return;
+    }
+    footprints_ = measureFootprints(scene_, camera_, settings_);
+    FrameRadii radii = firstFrameRadii(scene_, settings_, footprints_, planPhotons(scene_, settings_));
+    validateForScene(settings_, scene_, radii);
+    firstRadii_ = radii;
+    footprintsDirty_ = false;
+}
+
 const FrameParams& Backend::beginFrame() {
     prepare();
-    params_ = makeFrameParams(scene_, camera_, settings_, budget_, frameIndex_, accumulated_);
+    measureRadii();
+    if (accumulated_ == 0 || settings_.estimator != Estimator::Sppm) {
+        radii_ = firstRadii_;
+    }
+    params_ = makeFrameParams(scene_, camera_, settings_, budget_, frameIndex_, accumulated_, radii_);
     return params_;
 }
 
@@ -128,6 +147,15 @@ bool Backend::endFrame(const FrameResult& result, bool mayRepeat) {
     if (dropped && !warnedDropped_) {
         std::fprintf(stderr, "photon: a photon map overflowed; photons were dropped and it was grown\n");
         warnedDropped_ = true;
+    }
+    if (settings_.estimator == Estimator::Sppm) {
+        // The next frame's cells follow the median radius of the pixels that have photons.
+        for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
+            float r = sppmCellRadius(result.counters + COUNTER_SPPM_HISTOGRAM + m * SPPM_RADIUS_BINS);
+            if (r > 0.0f) {
+                radii_.radius[m] = r;
+            }
+        }
     }
     frameIndex_ += 1;
     accumulated_ += 1;

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "buffers.h"
+#include "footprints.h"
 #include "frame_setup.h"
 #include "image.h"
 #include "scene.h"
@@ -131,6 +132,8 @@ protected:
 
 private:
     Image readImage(std::uint32_t binding);
+    // The footprints and first radii of the camera, if it, the scene or the settings changed.
+    void measureRadii();
     // Grows a photon map that came within 80% of its capacity (GPU backends drop photons beyond
     // it). Returns true if photons were dropped this frame.
     bool growPhotonMaps();
@@ -139,6 +142,10 @@ private:
     RenderSettings settings_;
     CameraDesc camera_;
     PhotonBudget budget_;
+    Footprints footprints_;       // of the camera and image (automatic radii)
+    FrameRadii firstRadii_;       // the first frame's radii
+    FrameRadii radii_;            // this frame's (sppm: from the statistics of the frame before)
+    bool footprintsDirty_ = true;
     FrameParams params_{};
     FrameStats stats_;
     std::uint32_t frameIndex_ = 0;   // frames since the scene or settings were set: seeds the RNG

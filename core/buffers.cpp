@@ -36,6 +36,7 @@ BufferPlan planBuffers(const Scene& scene, const PhotonBudget& budget, std::uint
             case BUFFER_PER_CELL: n = budget.totalCellEntries(); break;
             case BUFFER_PER_PIXEL: n = std::uint64_t(width) * height; break;
             case BUFFER_PER_COUNTER: n = COUNTER_COUNT; break;
+            case BUFFER_PER_SPPM_PIXEL: n = budget.sppm ? std::uint64_t(width) * height : 1; break;
             default: throw std::logic_error(std::string("buffer ") + info.name + ": unknown size class");
         }
         plan.elements[info.binding] = n;
@@ -50,6 +51,7 @@ const char* whatToLower(std::uint32_t sizeClass) {
         case BUFFER_PER_CELL: return "lower the photons per frame (--photons) or the bounded grid's resolution";
         case BUFFER_PER_PIXEL: return "lower the resolution (--width, --height)";
         case BUFFER_PER_COUNTER: return "nothing can be lowered";
+        case BUFFER_PER_SPPM_PIXEL: return "lower the resolution (--width, --height)";
     }
     throw std::logic_error("unknown buffer size class");
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "footprints.h"
 #include "shared/progressive.h"
 
 namespace photon {
@@ -35,6 +36,7 @@ PhotonBudget planPhotons(const Scene& scene, const RenderSettings& settings) {
         b.causticPaths = std::min(b.causticPaths, settings.photons - 1u);
     }
     b.globalPaths = settings.photons - b.causticPaths;
+    b.sppm = settings.estimator == Estimator::Sppm;
     // A global path stores at most one photon per bounce; Russian roulette makes the mean small.
     // A caustic path stores at most one photon: at its first non-specular surface.
     // Capacities stay below 2^31 photons so that offsets fit in 32 bits; a request that large
@@ -57,16 +59,9 @@ PhotonBudget planPhotons(const Scene& scene, const RenderSettings& settings) {
     return b;
 }
 
-float baseRadius(const Scene& scene, const RenderSettings& settings, std::uint32_t map) {
-    float global = settings.radius > 0.0f ? settings.radius : 0.01f * scene.diagonal();
-    if (map == MAP_GLOBAL) {
-        return global;
-    }
-    return settings.causticRadius > 0.0f ? settings.causticRadius : 0.5f * global;
-}
-
 FrameParams makeFrameParams(const Scene& scene, const CameraDesc& camera, const RenderSettings& settings,
-                            const PhotonBudget& budget, std::uint32_t frameIndex, std::uint32_t accumulated) {
+                            const PhotonBudget& budget, std::uint32_t frameIndex, std::uint32_t accumulated,
+                            const FrameRadii& radii) {
     FrameParams p{};
     p.camera = makeCamera(camera, settings.width, settings.height);
 
@@ -85,10 +80,12 @@ FrameParams makeFrameParams(const Scene& scene, const CameraDesc& camera, const 
     float cube = std::max({extent.x, extent.y, extent.z});
     for (std::uint32_t map = 0; map < MAP_COUNT; ++map) {
         GridParams& g = p.grids[map];
-        float r = baseRadius(scene, settings, map);
+        float r = radii.radius[map];
         g.radius = progressive ? progressiveRadius(r, settings.alpha, accumulated) : r;
         g.kind = settings.grid == GridKind::Bounded ? GRID_BOUNDED : GRID_HASHED;
-        g.origin = scene.boundsMin;
+        // Hashed cells start at the camera, where the image needs precision (a far object that
+        // stretches the bounds changes nothing).
+        g.origin = settings.grid == GridKind::Bounded ? scene.boundsMin : camera.position;
         if (settings.grid == GridKind::Bounded) {
             g.resolution = settings.gridResolution;
             g.cellSize = cube / float(settings.gridResolution);
@@ -123,6 +120,11 @@ FrameParams makeFrameParams(const Scene& scene, const CameraDesc& camera, const 
     p.photonIdBits = bitsBelow(budget.totalPaths()) + PHOTON_BOUNCE_BITS;
     p.accumulated = accumulated;
     p.gatherBudget = settings.gatherBudget;
+    p.firstRadiusGlobal = radii.firstRadius[MAP_GLOBAL];
+    p.firstRadiusCaustic = radii.firstRadius[MAP_CAUSTIC];
+    p.firstFootprintsGlobal = radii.firstFootprints[MAP_GLOBAL];
+    p.firstFootprintsCaustic = radii.firstFootprints[MAP_CAUSTIC];
+    p.alpha = settings.alpha;
     return p;
 }
 

@@ -17,6 +17,7 @@ struct PhotonBudget {
     std::uint32_t capacity[MAP_COUNT] = {};   // stored photons each map has room for
     std::uint32_t cells[MAP_COUNT] = {};      // cells of each map's grid (hashed: a power of two)
     bool splitCaustics = false;               // caustic paths come from the caustic pass only
+    bool sppm = false;                        // the estimator keeps per-pixel statistics
 
     std::uint32_t photonOffset(std::uint32_t map) const { return map == MAP_GLOBAL ? 0u : capacity[MAP_GLOBAL]; }
     std::uint32_t cellOffset(std::uint32_t map) const { return map == MAP_GLOBAL ? 0u : cells[MAP_GLOBAL] + 1u; }
@@ -28,12 +29,14 @@ struct PhotonBudget {
 
 PhotonBudget planPhotons(const Scene& scene, const RenderSettings& settings);
 
-// The query radius of a map in the first frame (settings or a default from the scene's size).
-float baseRadius(const Scene& scene, const RenderSettings& settings, std::uint32_t map);
+struct FrameRadii;  // footprints.h
 
 // Parameters of one frame. frameIndex numbers frames since the renderer started (it seeds the
-// random numbers); accumulated counts the frames already averaged (the progressive index).
+// random numbers); accumulated counts the frames already averaged (the progressive index);
+// radii are the frame's query radii (footprints.h: the first frame's; the progressive estimator
+// shrinks them here, sppm on the device).
 FrameParams makeFrameParams(const Scene& scene, const CameraDesc& camera, const RenderSettings& settings,
-                            const PhotonBudget& budget, std::uint32_t frameIndex, std::uint32_t accumulated);
+                            const PhotonBudget& budget, std::uint32_t frameIndex, std::uint32_t accumulated,
+                            const FrameRadii& radii);
 
 }  // namespace photon

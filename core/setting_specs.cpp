@@ -96,6 +96,10 @@ std::string expectation(const SettingSpec& spec) {
     return spec.range.describe();
 }
 
+void markGiven(RenderSettings& settings, const SettingSpec& spec) {
+    settings.given |= std::uint64_t(1) << std::size_t(&spec - settingSpecs().data());
+}
+
 // Checks a value of an Integer or Number setting and stores it.
 void store(RenderSettings& settings, const SettingSpec& spec, double value, const std::string& shown,
            const std::string& where) {
@@ -117,6 +121,7 @@ void store(RenderSettings& settings, const SettingSpec& spec, double value, cons
         value = f;
     }
     spec.set(settings, value);
+    markGiven(settings, spec);
 }
 
 }  // namespace
@@ -141,6 +146,10 @@ std::string Range::describe() const {
 
 const std::vector<SettingSpec>& settingSpecs() {
     static const std::vector<SettingSpec> specs = makeSpecs();
+    static_assert(sizeof(RenderSettings::given) * 8 == 64, "RenderSettings::given holds 64 settings");
+    if (specs.size() > 64) {
+        throw std::logic_error("more settings than RenderSettings::given has bits");
+    }
     return specs;
 }
 
@@ -158,6 +167,7 @@ void setSetting(RenderSettings& settings, const SettingSpec& spec, const std::st
         if (!spec.setName(settings, text)) {
             fail(where, "unknown value '" + text + "' (expected " + spec.choices + ")");
         }
+        markGiven(settings, spec);
         return;
     }
     if (spec.kind == SettingKind::Flag) {
@@ -168,6 +178,7 @@ void setSetting(RenderSettings& settings, const SettingSpec& spec, const std::st
         } else {
             fail(where, "must be true or false (got '" + text + "')");
         }
+        markGiven(settings, spec);
         return;
     }
     // Decimal numbers only: no "nan", "inf" or hexadecimal, nothing after the number.
@@ -209,15 +220,32 @@ void validateSettings(const RenderSettings& settings) {
             }
         }
     }
+    if (settings.estimator == Estimator::Sppm && settings.globalMode == GlobalMode::FinalGather) {
+        fail("--global final-gather", "sppm estimates both maps at the visible point: use --global direct with it");
+    }
 }
 
-void validateForScene(const RenderSettings& settings, const Scene& scene) {
+bool isGiven(const RenderSettings& settings, const std::string& key) {
+    const SettingSpec* spec = findSetting(key);
+    if (spec == nullptr) {
+        throw std::logic_error("isGiven: no setting " + key);
+    }
+    return (settings.given >> std::size_t(spec - settingSpecs().data())) & 1u;
+}
+
+void chooseDefaults(RenderSettings& settings, bool timed) {
+    if (!isGiven(settings, "estimator") && (timed || settings.frames > 1)) {
+        settings.estimator = Estimator::Sppm;
+    }
+}
+
+void validateForScene(const RenderSettings& settings, const Scene& scene, const FrameRadii& radii) {
     glm::vec3 extent = scene.boundsMax - scene.boundsMin;
     double size = std::max({double(extent.x), double(extent.y), double(extent.z)});
     for (std::uint32_t map = 0; map < MAP_COUNT; ++map) {
         const char* flagName = map == MAP_GLOBAL ? "--radius" : "--caustic-radius";
         float given = map == MAP_GLOBAL ? settings.radius : settings.causticRadius;
-        double r = baseRadius(scene, settings, map);
+        double r = radii.radius[map];
         std::string what = std::string(flagName) + " " + formatNumber(r) + (given > 0.0f ? "" : " (automatic)");
         if (!kRadius.contains(r)) {
             fail(what, "must be " + kRadius.describe() + "; the scene spans " + formatNumber(size));

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "footprints.h"
 #include "scene.h"
 #include "settings.h"
 
@@ -59,7 +60,17 @@ void setSettingNumber(RenderSettings& settings, const SettingSpec& spec, double 
 // throws InputError naming the first bad one by its flag.
 void validateSettings(const RenderSettings& settings);
 
+// Whether a file or the command line set the setting of this key (or flag).
+bool isGiven(const RenderSettings& settings, const std::string& key);
+
+// What is left to choose once a render's length is known: sppm for a render of more than one frame
+// (or of a time), unless an estimator was given.
+void chooseDefaults(RenderSettings& settings, bool timed);
+
+// The default length of photon-render's render without --frames, --time or frames in the scene.
+inline constexpr double kDefaultRenderSeconds = 2.0;
+
 // The settings against the scene they render: query radii the grids can hold.
-void validateForScene(const RenderSettings& settings, const Scene& scene);
+void validateForScene(const RenderSettings& settings, const Scene& scene, const FrameRadii& radii);
 
 }  // namespace photon

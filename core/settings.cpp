@@ -14,7 +14,8 @@ using Names = std::array<std::pair<E, const char*>, N>;
 constexpr Names<Estimator, enumCount<Estimator>()> kEstimators{{{Estimator::Cell, "cell"},
                                            {Estimator::Radius, "radius"},
                                            {Estimator::Knn, "knn"},
-                                           {Estimator::Progressive, "progressive"}}};
+                                           {Estimator::Progressive, "progressive"},
+                                           {Estimator::Sppm, "sppm"}}};
 constexpr Names<Kernel, enumCount<Kernel>()> kKernels{{{Kernel::Box, "box"}, {Kernel::Cone, "cone"}, {Kernel::Epanechnikov, "epanechnikov"}}};
 constexpr Names<GridKind, enumCount<GridKind>()> kGrids{{{GridKind::Bounded, "bounded"}, {GridKind::Hashed, "hashed"}}};
 constexpr Names<GlobalMode, enumCount<GlobalMode>()> kGlobalModes{{{GlobalMode::Direct, "direct"}, {GlobalMode::FinalGather, "final-gather"}}};

@@ -15,7 +15,8 @@ enum class Estimator : std::uint32_t {
     Cell = ESTIMATOR_CELL,
     Radius = ESTIMATOR_RADIUS,
     Knn = ESTIMATOR_KNN,
-    Progressive = ESTIMATOR_PROGRESSIVE
+    Progressive = ESTIMATOR_PROGRESSIVE,
+    Sppm = ESTIMATOR_SPPM
 };
 enum class Kernel : std::uint32_t { Box = KERNEL_BOX, Cone = KERNEL_CONE, Epanechnikov = KERNEL_EPANECHNIKOV };
 enum class GridKind : std::uint32_t { Bounded = GRID_BOUNDED, Hashed = GRID_HASHED };
@@ -67,6 +68,7 @@ struct RenderSettings {
     View view = View::Final;
     float exposure = 0.0f;                // stops
     Tonemap tonemap = Tonemap::Aces;
+    std::uint64_t given = 0;              // bit i: settingSpecs()[i] was set by a file or a flag
 };
 
 const char* toString(Estimator e);

@@ -7,7 +7,7 @@
 
 #include "core/parallel.h"
 #include "shared/eye_trace.h"
-#include "shared/gather.h"
+#include "shared/sppm.h"
 #include "shared/photon_map.h"
 #include "shared/photon_trace.h"
 #include "shared/progressive.h"
@@ -101,14 +101,13 @@ protected:
         result.ms.tracePixels = millisecondsSince(t);
 
         t = std::chrono::steady_clock::now();
-        forEachPixel([&](std::uint32_t p) { bindings_.frameRadiance[p] = glm::vec4(gatherPixel(bindings_, p), 1.0f); });
+        forEachPixel([&](std::uint32_t p) {
+            bindings_.frameRadiance[p] = glm::vec4(gatherStage(bindings_, p, params.estimator, params.globalMode), 1.0f);
+        });
         result.ms.gather = millisecondsSince(t);
 
         t = std::chrono::steady_clock::now();
-        std::uint32_t n = params.accumulated;
-        forEachPixel([&](std::uint32_t p) {
-            bindings_.accumulation[p] = accumulateMean(bindings_.accumulation[p], bindings_.frameRadiance[p], n);
-        });
+        forEachPixel([&](std::uint32_t p) { bindings_.accumulation[p] = accumulatePixel(bindings_, p); });
         result.ms.accumulate = millisecondsSince(t);
 
         std::copy(bindings_.counters, bindings_.counters + COUNTER_COUNT, result.counters);

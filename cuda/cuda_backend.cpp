@@ -193,6 +193,37 @@ protected:
         std::copy_n(reinterpret_cast<const unsigned char*>(hostPixels_.data()), bytes, static_cast<unsigned char*>(data));
     }
 
+public:
+    PrimaryRayTiming timePrimaryRays(int repeats) {
+        if (width_ == 0) {
+            throw std::logic_error("timePrimaryRays before a frame");
+        }
+        DeviceArray<std::uint32_t> hits;
+        hits.resize(1, "primary rays");
+        std::vector<double> ms;
+        std::uint32_t hitCount = 0;
+        for (int r = -1; r < repeats; ++r) {  // r = -1: the warm-up
+            CUDA_CHECK(cudaMemsetAsync(hits.data(), 0, sizeof(std::uint32_t), stream_), "primary rays");
+            CUDA_CHECK(cudaEventRecord(events_[0], stream_), "primary rays");
+            kernels_->tracePrimaryRays(bindings_, hits.data(), config_, stream_);
+            CUDA_CHECK(cudaEventRecord(events_[1], stream_), "primary rays");
+            CUDA_CHECK(cudaMemcpyAsync(&hitCount, hits.data(), sizeof(hitCount), cudaMemcpyDeviceToHost, stream_),
+                       "primary rays");
+            CUDA_CHECK(cudaStreamSynchronize(stream_), "primary rays");
+            float t = 0.0f;
+            CUDA_CHECK(cudaEventElapsedTime(&t, events_[0], events_[1]), "primary rays");
+            if (r >= 0) {
+                ms.push_back(t);
+            }
+        }
+        std::sort(ms.begin(), ms.end());
+        PrimaryRayTiming timing;
+        timing.medianMs = ms.empty() ? 0.0 : ms[ms.size() / 2];
+        timing.rays = std::uint64_t(width_) * height_;
+        timing.hits = hitCount;
+        return timing;
+    }
+
 private:
     void bind(const FrameParams& params) {
         void* pointers[BINDING_COUNT] = {};
@@ -240,6 +271,11 @@ int cudaDeviceCount() {
 
 std::unique_ptr<Backend> createCudaBackend(const BackendOptions& options) {
     return std::make_unique<CudaBackend>(options);
+}
+
+PrimaryRayTiming timeCudaPrimaryRays(Backend& backend, int repeats) {
+    auto* cuda = dynamic_cast<CudaBackend*>(&backend);
+    return cuda ? cuda->timePrimaryRays(repeats) : PrimaryRayTiming{};
 }
 
 void setCudaLaunchConfig(Backend& backend, const LaunchConfig& config) {

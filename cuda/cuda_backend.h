@@ -19,4 +19,14 @@ int cudaDeviceCount();
 // Launch shapes of a CUDA backend (photon-bench sweeps them). No effect on other backends.
 void setCudaLaunchConfig(Backend& backend, const LaunchConfig& config);
 
+// photon-bench's probe of the traversal: one ray through every pixel centre of the last frame's
+// camera and image, nearest hit only, timed with CUDA events after a warm-up; the median of
+// `repeats` launches. Zero times on other backends.
+struct PrimaryRayTiming {
+    double medianMs = 0.0;
+    std::uint64_t rays = 0;
+    std::uint64_t hits = 0;  // of one launch
+};
+PrimaryRayTiming timeCudaPrimaryRays(Backend& backend, int repeats);
+
 }  // namespace photon

@@ -12,6 +12,7 @@
 #include "shared/photon_map.h"
 #include "shared/photon_trace.h"
 #include "shared/progressive.h"
+#include "shared/sppm.h"
 
 namespace photon {
 namespace PHOTON_KERNEL_NAMESPACE {
@@ -71,20 +72,29 @@ __global__ void tracePixelsKernel(Bindings b) {
     }
 }
 
+__global__ void tracePrimaryRaysKernel(Bindings b, uint* hits) {
+    uint p;
+    uint hit = pixelOf(b, p) ? tracePrimaryRay(b, p) : 0u;
+    uint blockHits = __syncthreads_count(hit);
+    if (threadIdx.x == 0 && threadIdx.y == 0 && blockHits > 0) {
+        atomicAdd(hits, blockHits);
+    }
+}
+
 // One kernel per estimator and global mode: constants fold away the others' code (the k-nearest
 // heap, final gather), which would otherwise cost registers and stack in every variant.
 template <uint Estimator, uint GlobalMode>
 __global__ void __launch_bounds__(kGatherThreads, gatherMinBlocks(GlobalMode)) gatherKernel(Bindings b) {
     uint p;
     if (pixelOf(b, p)) {
-        b.frameRadiance[p] = vec4(gatherPixel(b, p, Estimator, GlobalMode), 1.0f);
+        b.frameRadiance[p] = vec4(gatherStage(b, p, Estimator, GlobalMode), 1.0f);
     }
 }
 
 __global__ void accumulateKernel(Bindings b) {
     uint p;
     if (pixelOf(b, p)) {
-        b.accumulation[p] = accumulateMean(b.accumulation[p], b.frameRadiance[p], b.params.accumulated);
+        b.accumulation[p] = accumulatePixel(b, p);
     }
 }
 
@@ -138,15 +148,21 @@ void gatherWith(const Bindings& b, const LaunchConfig& c, cudaStream_t s) {
 }
 
 void gather(const Bindings& b, const LaunchConfig& c, cudaStream_t s) {
-    static_assert(ESTIMATOR_COUNT == 4, "a new estimator needs its gather kernel here");
+    static_assert(ESTIMATOR_COUNT == 5, "a new estimator needs its gather kernel here");
     switch (b.params.estimator) {
         case ESTIMATOR_CELL: gatherWith<ESTIMATOR_CELL>(b, c, s); break;
         case ESTIMATOR_RADIUS:
         case ESTIMATOR_PROGRESSIVE: gatherWith<ESTIMATOR_RADIUS>(b, c, s); break;  // the same estimate
         case ESTIMATOR_KNN: gatherWith<ESTIMATOR_KNN>(b, c, s); break;
+        case ESTIMATOR_SPPM: gatherWith<ESTIMATOR_SPPM>(b, c, s); break;
         default: throw std::logic_error("CUDA gather: unknown estimator " + std::to_string(b.params.estimator));
     }
     CUDA_CHECK_LAUNCH("gather");
+}
+
+void tracePrimaryRays(const Bindings& b, std::uint32_t* hits, const LaunchConfig& c, cudaStream_t s) {
+    tracePrimaryRaysKernel<<<pixelGrid(b, c), dim3(c.pixelBlockX, c.pixelBlockY), 0, s>>>(b, hits);
+    CUDA_CHECK_LAUNCH("tracePrimaryRays");
 }
 
 void accumulate(const Bindings& b, const LaunchConfig& c, cudaStream_t s) {
@@ -161,6 +177,7 @@ const StageKernels PHOTON_KERNEL_TABLE = {
     PHOTON_KERNEL_NAMESPACE::scatterPhotons, PHOTON_KERNEL_NAMESPACE::sortKeys,
     PHOTON_KERNEL_NAMESPACE::placeSorted, PHOTON_KERNEL_NAMESPACE::tracePixels,
     PHOTON_KERNEL_NAMESPACE::gather, PHOTON_KERNEL_NAMESPACE::accumulate,
+    PHOTON_KERNEL_NAMESPACE::tracePrimaryRays,
 };
 
 }  // namespace photon

@@ -37,6 +37,9 @@ struct StageKernels {
     void (*tracePixels)(const Bindings& b, const LaunchConfig& c, cudaStream_t s);
     void (*gather)(const Bindings& b, const LaunchConfig& c, cudaStream_t s);
     void (*accumulate)(const Bindings& b, const LaunchConfig& c, cudaStream_t s);
+    // Not a stage: photon-bench's probe of the traversal alone (tracePrimaryRay), adding the
+    // pixels whose ray hit something to *hits.
+    void (*tracePrimaryRays)(const Bindings& b, std::uint32_t* hits, const LaunchConfig& c, cudaStream_t s);
 };
 
 extern const StageKernels kFastKernels;

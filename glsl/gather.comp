@@ -6,7 +6,7 @@
 #define PH_PHOTON_MAPS_READONLY
 #define PH_HIT_POINTS_READONLY
 #include "shared/bindings.h"
-#include "shared/gather.h"
+#include "shared/sppm.h"
 #include "glsl/dispatch.h"
 
 layout(local_size_x = PIXEL_TILE_X, local_size_y = PIXEL_TILE_Y) in;
@@ -18,5 +18,5 @@ void main() {
     if (!pixelOfInvocation(pixel)) {
         return;
     }
-    frameRadiance[pixel] = vec4(gatherPixel(pixel, ESTIMATOR, GLOBAL_MODE), 1.0f);
+    frameRadiance[pixel] = vec4(gatherStage(pixel, ESTIMATOR, GLOBAL_MODE), 1.0f);
 }

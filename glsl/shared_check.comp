@@ -16,6 +16,7 @@
 #include "../shared/eye_trace.h"
 #include "../shared/gather.h"
 #include "../shared/progressive.h"
+#include "../shared/sppm.h"
 #include "../shared/tonemap.h"
 
 layout(local_size_x = 64) in;
@@ -30,7 +31,8 @@ void main() {
     Photon p;
     uint store = photonBounce(path, p) + key.x + photonSortKeyBits(MAP_GLOBAL);
     hitPoints[i] = tracePixel(i);
-    frameRadiance[i] = vec4(gatherPixel(i), float(store));
+    frameRadiance[i] = vec4(gatherPixel(i) + gatherStage(i, ESTIMATOR_SPPM, GLOBAL_DIRECT), float(store));
+    accumulation[i] = accumulatePixel(i);
     accumulation[i] = accumulateMean(accumulation[i], frameRadiance[i], params.accumulated);
     photonKeys[i] = photonCellKey(p.position, params.grids[0]);
     accumulation[i].x += tonemap(vec3(1.0f), 1.0f, TONEMAP_ACES).x + progressiveRadius(1.0f, 0.7f, 3u);

@@ -38,7 +38,8 @@
     X(COUNTERS, 19u, uint, counters, RW, COUNTER)                              \
     X(HIT_POINTS, 20u, HitPoint, hitPoints, HITS, PIXEL)                       \
     X(FRAME, 21u, vec4, frameRadiance, RW, PIXEL)                              \
-    X(ACCUMULATION, 22u, vec4, accumulation, RW, PIXEL)
+    X(ACCUMULATION, 22u, vec4, accumulation, RW, PIXEL)                        \
+    X(SPPM_PIXELS, 23u, SppmPixel, sppmPixels, RW, SPPM_PIXEL)
 
 PH_NAMESPACE_BEGIN
 
@@ -48,7 +49,8 @@ PH_CONST uint BUFFER_PER_PHOTON = 1u;   // PhotonBudget::totalCapacity(): both m
 PH_CONST uint BUFFER_PER_CELL = 2u;     // PhotonBudget::totalCellEntries(): both grids' cells
 PH_CONST uint BUFFER_PER_PIXEL = 3u;    // width × height
 PH_CONST uint BUFFER_PER_COUNTER = 4u;  // COUNTER_COUNT
-PH_CONST uint BUFFER_SIZE_CLASS_COUNT = 5u;
+PH_CONST uint BUFFER_PER_SPPM_PIXEL = 5u;  // width × height with the sppm estimator, else one element
+PH_CONST uint BUFFER_SIZE_CLASS_COUNT = 6u;
 
 PH_CONST uint BINDING_PARAMS = 0u;  // FrameParams (uniform)
 #define PH_BINDING_CONSTANT(NAME, b, T, name, access, sizeClass) PH_CONST uint BINDING_##NAME = b;

@@ -49,7 +49,8 @@ PH_CONST uint ESTIMATOR_CELL = 0u;         // Wu's estimate: the photons of the 
 PH_CONST uint ESTIMATOR_RADIUS = 1u;       // fixed radius, filtered by a kernel
 PH_CONST uint ESTIMATOR_KNN = 2u;          // k nearest photons within a maximum radius (Jensen)
 PH_CONST uint ESTIMATOR_PROGRESSIVE = 3u;  // fixed radius per frame, shrinking (Knaus & Zwicker 2011)
-PH_CONST uint ESTIMATOR_COUNT = 4u;
+PH_CONST uint ESTIMATOR_SPPM = 4u;         // per-pixel radius and flux, stochastic progressive (Hachisuka & Jensen 2009)
+PH_CONST uint ESTIMATOR_COUNT = 5u;
 
 // Density-estimation kernels (FrameParams::kernel).
 PH_CONST uint KERNEL_BOX = 0u;
@@ -89,7 +90,11 @@ PH_CONST uint MAP_COUNT = 2u;
 // Slots of the counters buffer.
 PH_CONST uint COUNTER_STORED_GLOBAL = 0u;   // photons appended to the global map this frame
 PH_CONST uint COUNTER_STORED_CAUSTIC = 1u;  // photons appended to the caustic map this frame
-PH_CONST uint COUNTER_COUNT = 2u;
+PH_CONST uint COUNTER_SPPM_RADIUS_GLOBAL = 2u;   // sppm: the largest radius of a pixel with photons (float bits)
+PH_CONST uint COUNTER_SPPM_RADIUS_CAUSTIC = 3u;
+PH_CONST uint SPPM_RADIUS_BINS = 64u;            // sppm: pixels with photons by the binary exponent of their radius
+PH_CONST uint COUNTER_SPPM_HISTOGRAM = 4u;       // the global map's bins, then the caustic map's
+PH_CONST uint COUNTER_COUNT = COUNTER_SPPM_HISTOGRAM + 2u * SPPM_RADIUS_BINS;
 
 // photonBounce() result bits.
 PH_CONST uint STORE_GLOBAL = 1u;

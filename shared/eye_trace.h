@@ -91,6 +91,15 @@ PH_FN HitPoint emptyHitPoint() {
     return hp;
 }
 
+// A probe of the traversal alone, for photon-bench (Aila and Laine's "primary rays"): the ray
+// through the pixel's centre and its nearest hit, without shading. 1 if it hit anything.
+PH_FN uint tracePrimaryRay(BUF_PARAM uint pixel) {
+    uint width = BUF(params).width;
+    Rng rng = rngCreate(pixel, 0u, 0u, STREAM_CAMERA);  // unused: no jitter through the centre
+    Ray ray = cameraRay(BUF(params).camera, pixel % width, pixel / width, width, BUF(params).height, FLAG_PIXEL_CENTER, rng);
+    return traceRay(BUF_ARG ray, QUERY_CLOSEST).kind != NONE ? 1u : 0u;
+}
+
 PH_FN HitPoint tracePixel(BUF_PARAM uint pixel) {
     uint width = BUF(params).width;
     Rng rng = rngCreate(pixel, BUF(params).frameIndex, BUF(params).seed, STREAM_CAMERA);

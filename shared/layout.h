@@ -140,6 +140,9 @@ struct PH_ALIGN16 FrameParams {
     // photonIdBits: bits of a photon id this frame (photon_map.h); accumulated: frames already
     // averaged into the accumulation buffer (the progressive index i); gatherBudget: photons a
     // query visits per cell before it subsamples the cell (0: all)
+    float firstRadiusGlobal; float firstRadiusCaustic; float firstFootprintsGlobal; float firstFootprintsCaustic;
+    float alpha; uint pad1; uint pad2; uint pad3;
+    // sppm: a pixel's first radius of each map (0: firstFootprints* of its footprint, sppm.h); α
 };
 
 // ---- Photon maps ------------------------------------------------------------------------------
@@ -157,6 +160,15 @@ struct PH_ALIGN16 HitPoint {
     vec3 weight; uint normal;        // path throughput from the camera; octahedral shading normal facing ωo
     vec3 direct; uint outgoing;      // weighted emission, background and direct light; octahedral ωo
     vec3 albedo; uint geometricNormal;  // the albedo there (textured); octahedral geometric normal facing ωo
+};
+
+// A pixel's statistics under stochastic progressive photon mapping (sppm.h), kept across frames:
+// for each map the photon count N, the radius R and the flux τ; and the mean of the direct part.
+struct PH_ALIGN16 SppmPixel {
+    vec3 direct; float countGlobal;     // mean over frames of emission, background and direct light
+    vec3 fluxGlobal; float radiusGlobal;
+    vec3 fluxCaustic; float radiusCaustic;
+    float countCaustic; uint pad0; uint pad1; uint pad2;
 };
 
 PH_NAMESPACE_END
@@ -193,11 +205,15 @@ PH_OFFSET(SceneInfo, background, 32);
 PH_SIZE(GridParams, 48); PH_OFFSET(GridParams, cellSize, 12); PH_OFFSET(GridParams, resolution, 16);
 PH_OFFSET(GridParams, cellOffset, 28); PH_OFFSET(GridParams, photonOffset, 32);
 PH_OFFSET(GridParams, radius, 40); PH_OFFSET(GridParams, keyBits, 44);
-PH_SIZE(FrameParams, 64 + 48 + 2 * 48 + 5 * 16); PH_OFFSET(FrameParams, scene, 64);
+PH_SIZE(FrameParams, 64 + 48 + 2 * 48 + 7 * 16); PH_OFFSET(FrameParams, scene, 64);
 PH_OFFSET(FrameParams, grids, 112); PH_OFFSET(FrameParams, width, 208);
 PH_OFFSET(FrameParams, globalPaths, 224); PH_OFFSET(FrameParams, estimator, 240);
 PH_OFFSET(FrameParams, gatherRays, 256); PH_OFFSET(FrameParams, photonIdBits, 272);
 PH_OFFSET(FrameParams, gatherBudget, 280);
+PH_OFFSET(FrameParams, firstRadiusGlobal, 288); PH_OFFSET(FrameParams, firstFootprintsCaustic, 300);
+PH_OFFSET(FrameParams, alpha, 304);
+PH_SIZE(SppmPixel, 64); PH_OFFSET(SppmPixel, countGlobal, 12); PH_OFFSET(SppmPixel, radiusGlobal, 28);
+PH_OFFSET(SppmPixel, fluxCaustic, 32); PH_OFFSET(SppmPixel, countCaustic, 48);
 PH_SIZE(Photon, 32); PH_OFFSET(Photon, incoming, 12); PH_OFFSET(Photon, power, 16); PH_OFFSET(Photon, id, 28);
 PH_SIZE(HitPoint, 64); PH_OFFSET(HitPoint, material, 12); PH_OFFSET(HitPoint, weight, 16);
 PH_OFFSET(HitPoint, normal, 28); PH_OFFSET(HitPoint, direct, 32); PH_OFFSET(HitPoint, outgoing, 44);

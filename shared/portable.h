@@ -22,8 +22,8 @@
 //  - Buffer structs are declared `struct PH_ALIGN16 Name`.
 //  - Buffers are reached through BUF(name): a global buffer in GLSL, a member of the Bindings
 //    struct in C++ that every such function receives first (BUF_PARAM / BUF_ARG).
-//  - Atomics are PH_ATOMIC_ADD(buffer element, value), which returns the old value: GLSL's
-//    atomicAdd, CUDA's atomicAdd, a relaxed __atomic_fetch_add on the CPU. PH_RESERVE_SLOT(counter)
+//  - Atomics are PH_ATOMIC_ADD(buffer element, value) and PH_ATOMIC_MAX, which return the old
+//    value: GLSL's atomicAdd/atomicMax, CUDA's, relaxed __atomic builtins on the CPU. PH_RESERVE_SLOT(counter)
 //    hands out one slot of an append buffer (on CUDA, one atomic per warp for all its threads).
 #ifndef PHOTON_SHARED_PORTABLE_H
 #define PHOTON_SHARED_PORTABLE_H
@@ -43,6 +43,7 @@
 #define BUF_ARG
 #define BUF(name) name
 #define PH_ATOMIC_ADD(lvalue, value) atomicAdd(lvalue, value)
+#define PH_ATOMIC_MAX(lvalue, value) atomicMax(lvalue, value)
 #define PH_RESERVE_SLOT(counter) atomicAdd(counter, 1u)
 
 #else
@@ -89,9 +90,20 @@ __device__ inline std::uint32_t reserveSlotCoalesced(std::uint32_t* counter) {
 #endif
 #ifdef __CUDA_ARCH__
 #define PH_ATOMIC_ADD(lvalue, value) atomicAdd(&(lvalue), (value))
+#define PH_ATOMIC_MAX(lvalue, value) atomicMax(&(lvalue), (value))
 #define PH_RESERVE_SLOT(counter) reserveSlotCoalesced(&(counter))
 #else
+namespace photon {
+// GCC has no __atomic_fetch_max: a compare-and-swap loop, relaxed like the others.
+inline std::uint32_t atomicMaxRelaxed(std::uint32_t& target, std::uint32_t value) {
+    std::uint32_t old = __atomic_load_n(&target, __ATOMIC_RELAXED);
+    while (old < value && !__atomic_compare_exchange_n(&target, &old, value, true, __ATOMIC_RELAXED, __ATOMIC_RELAXED)) {
+    }
+    return old;
+}
+}  // namespace photon
 #define PH_ATOMIC_ADD(lvalue, value) __atomic_fetch_add(&(lvalue), (value), __ATOMIC_RELAXED)
+#define PH_ATOMIC_MAX(lvalue, value) ::photon::atomicMaxRelaxed(lvalue, value)
 #define PH_RESERVE_SLOT(counter) PH_ATOMIC_ADD(counter, 1u)
 #endif
 #endif

@@ -32,7 +32,7 @@ Scene furnaceScene(float radius, float albedo, float power) {
 }
 
 TEST(Furnace, RadianceEverywhereIsRhoPhiOver4Pi2R2OneMinusRho) {
-    for (Estimator estimator : {Estimator::Radius, Estimator::Knn, Estimator::Progressive}) {
+    for (Estimator estimator : {Estimator::Radius, Estimator::Knn, Estimator::Progressive, Estimator::Sppm}) {
         const float R = 2.0f;
         const float rho = 0.5f;
         const float phi = 10.0f;

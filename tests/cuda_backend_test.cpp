@@ -54,7 +54,7 @@ protected:
 
 TEST_F(CudaVsCpu, EveryEstimatorAndGridInTheParityBuild) {
     Scene scene = defaultScene();
-    for (Estimator e : {Estimator::Cell, Estimator::Radius, Estimator::Knn, Estimator::Progressive}) {
+    for (Estimator e : {Estimator::Cell, Estimator::Radius, Estimator::Knn, Estimator::Progressive, Estimator::Sppm}) {
         for (GridKind g : {GridKind::Hashed, GridKind::Bounded}) {
             RenderSettings s = small();
             s.estimator = e;

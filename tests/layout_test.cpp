@@ -58,11 +58,16 @@ const Member kMembers[] = {
     PH_MEMBER(FrameParams, width), PH_MEMBER(FrameParams, seed), PH_MEMBER(FrameParams, globalPaths),
     PH_MEMBER(FrameParams, maxEyeDepth), PH_MEMBER(FrameParams, estimator), PH_MEMBER(FrameParams, globalMode),
     PH_MEMBER(FrameParams, gatherRays), PH_MEMBER(FrameParams, flags), PH_MEMBER(FrameParams, photonIdBits),
-    PH_MEMBER(FrameParams, accumulated), PH_MEMBER(FrameParams, gatherBudget),
+    PH_MEMBER(FrameParams, accumulated), PH_MEMBER(FrameParams, gatherBudget), PH_MEMBER(FrameParams, firstRadiusGlobal),
+    PH_MEMBER(FrameParams, firstRadiusCaustic), PH_MEMBER(FrameParams, firstFootprintsGlobal),
+    PH_MEMBER(FrameParams, firstFootprintsCaustic), PH_MEMBER(FrameParams, alpha),
     PH_MEMBER(Photon, position), PH_MEMBER(Photon, incoming), PH_MEMBER(Photon, power), PH_MEMBER(Photon, id),
     PH_MEMBER(HitPoint, position), PH_MEMBER(HitPoint, material), PH_MEMBER(HitPoint, weight),
     PH_MEMBER(HitPoint, normal), PH_MEMBER(HitPoint, direct), PH_MEMBER(HitPoint, outgoing),
     PH_MEMBER(HitPoint, albedo), PH_MEMBER(HitPoint, geometricNormal),
+    PH_MEMBER(SppmPixel, direct), PH_MEMBER(SppmPixel, countGlobal), PH_MEMBER(SppmPixel, fluxGlobal),
+    PH_MEMBER(SppmPixel, radiusGlobal), PH_MEMBER(SppmPixel, fluxCaustic), PH_MEMBER(SppmPixel, radiusCaustic),
+    PH_MEMBER(SppmPixel, countCaustic),
 };
 
 

@@ -239,7 +239,7 @@ TEST(SceneLoaderErrors, BadIntegers) {
 
 TEST(SceneLoaderErrors, UnknownEnumValue) {
     EXPECT_EQ(renderError(R"({"estimator": "fast"})"),
-              "x.json: /render/estimator: unknown value 'fast' (expected cell|radius|knn|progressive)");
+              "x.json: /render/estimator: unknown value 'fast' (expected cell|radius|knn|progressive|sppm)");
 }
 
 TEST(SceneLoaderErrors, UnknownType) {

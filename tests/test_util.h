@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/footprints.h"
 #include "core/frame_setup.h"
 #include "core/image.h"
 #include "core/scene.h"
@@ -21,7 +22,8 @@ struct SceneBindings {
     explicit SceneBindings(Scene s, RenderSettings settings = {}) : scene(std::move(s)) {
         scene.finalize();
         PhotonBudget budget = planPhotons(scene, settings);
-        bindings.params = makeFrameParams(scene, scene.camera, settings, budget, 0, 0);
+        bindings.params = makeFrameParams(scene, scene.camera, settings, budget, 0, 0,
+                                          firstFrameRadii(scene, settings, measureFootprints(scene, scene.camera, settings), budget));
         bindSceneArrays(bindings, scene);
     }
 };
@@ -59,6 +61,12 @@ inline double chiSquareThreshold(int dof, double z = 4.26) {
 inline std::string scenesDir() {
     const char* env = std::getenv("PHOTON_SCENES_DIR");
     return env ? env : PHOTON_SCENES_DIR;
+}
+
+// The converged references of tests/data/: $PHOTON_TEST_DATA_DIR if set, else the source tree's.
+inline std::string dataPath(const std::string& name) {
+    const char* env = std::getenv("PHOTON_TEST_DATA_DIR");
+    return std::string(env ? env : PHOTON_TEST_DATA_DIR) + "/" + name;
 }
 
 // Where tests write images that help explain a failure: $PHOTON_TEST_OUTPUT_DIR if set.

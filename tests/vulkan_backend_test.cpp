@@ -202,7 +202,7 @@ TEST_F(VulkanBackendTest, HitPointsBitIdentical) {
 // gather and accumulate for every estimator on both grids, over two frames (the progressive
 // radius shrinks in the second).
 TEST_F(VulkanBackendTest, EveryEstimatorAndGridAgreesWithCpu) {
-    for (Estimator estimator : {Estimator::Cell, Estimator::Radius, Estimator::Knn, Estimator::Progressive}) {
+    for (Estimator estimator : {Estimator::Cell, Estimator::Radius, Estimator::Knn, Estimator::Progressive, Estimator::Sppm}) {
         for (GridKind grid : {GridKind::Hashed, GridKind::Bounded}) {
             RenderSettings settings = smallSettings();
             settings.estimator = estimator;

@@ -156,7 +156,7 @@ HudInfo Viewer::hudInfo() const {
     info.stats = backend_->lastFrameStats();
     info.accumulated = backend_->accumulatedFrames();
     for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
-        info.radius[m] = baseRadius(backend_->scene(), backend_->settings(), m);
+        info.radius[m] = backend_->lastFrameParams().grids[m].radius;
     }
     info.windowed = window_ != nullptr;
     return info;

@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/scene_loader.h"
+#include "core/setting_specs.h"
 
 namespace photon::viewer {
 namespace {
@@ -144,6 +145,7 @@ void Viewer::installScene(const Scene& scene, const std::string& path, bool keep
     if (!keepCameraAndSettings) {
         camera_ = CameraController(scene.camera, scene.diagonal());
         state_.settings = scene.render;
+        chooseDefaults(state_.settings, true);
         state_.exposure = scene.render.exposure;
         state_.tonemap = scene.render.tonemap;
     }

@@ -8,7 +8,7 @@ source .devlibs/setup.sh >/dev/null
 bin=build-device/bin
 out=${OUT:-/tmp/photon-out}
 mkdir -p "$out"
-export PHOTON_SCENES_DIR=$PWD/scenes PHOTON_TEST_OUTPUT_DIR=$out
+export PHOTON_SCENES_DIR=$PWD/scenes PHOTON_TEST_DATA_DIR=$PWD/tests/data PHOTON_TEST_OUTPUT_DIR=$out
 nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.max.sm,memory.total --format=csv,noheader
 summary=()
 for step in "$@"; do

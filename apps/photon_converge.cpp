@@ -1,0 +1,183 @@
+// photon-converge: error against time. Renders a scene frame after frame with each estimator and,
+// at every checkpoint (1, 2, 4, ... frames), compares the image with a converged reference:
+// relative RMSE of the whole image and away from the caustic window, and in the window the peak
+// and the energy relative to the reference's. Time is the backend's own GPU (or CPU) stage time,
+// summed over the frames; reading the image back for the comparison is not counted.
+//
+//   photon-render scenes/smallpt.json --backend cuda --estimator sppm --frames 4096 --photons 4000000 -o ref.pfm
+//   photon-converge scenes/smallpt.json --reference ref.pfm --backend cuda --estimators sppm,progressive,radius \
+//                   --photons 1000000 --frames 1024 --json smallpt-error.json
+//   photon-converge --compare image.pfm --reference ref.pfm     (one image: its error)
+#include <cstdio>
+#include <sstream>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "apps/backends.h"
+#include "apps/program.h"
+#include "core/error.h"
+#include "core/image_error.h"
+#include "core/output_file.h"
+#include "core/scene_loader.h"
+#include "core/setting_specs.h"
+
+namespace photon {
+namespace {
+
+std::vector<std::string> split(const std::string& s) {
+    std::vector<std::string> out;
+    std::stringstream in(s);
+    for (std::string item; std::getline(in, item, ',');) {
+        if (!item.empty()) {
+            out.push_back(item);
+        }
+    }
+    return out;
+}
+
+// A whole number in [0, limit], or InputError naming the option.
+std::uint32_t parseCount(const std::string& text, std::uint32_t limit, const std::string& what) {
+    std::size_t used = 0;
+    unsigned long v = 0;
+    try {
+        v = std::stoul(text, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (used == 0 || used != text.size() || text[0] == '-' || v > limit) {
+        throw InputError(what + ": '" + text + "' is not a whole number in [0, " + std::to_string(limit) + "]");
+    }
+    return std::uint32_t(v);
+}
+
+// "auto" (the 7 × 7 pixels about the reference's brightest), "auto:H" ((2H + 1)²), or x0,y0,x1,y1.
+Window parseWindow(const std::string& text, const Image& reference) {
+    if (text == "auto" || text.rfind("auto:", 0) == 0) {
+        std::uint32_t half = text.size() > 5 ? parseCount(text.substr(5), 1024, "--window") : 3u;
+        return brightestWindow(reference, half);
+    }
+    std::vector<std::string> parts = split(text);
+    Window w;
+    if (parts.size() == 4) {
+        w.x0 = parseCount(parts[0], reference.width, "--window");
+        w.y0 = parseCount(parts[1], reference.height, "--window");
+        w.x1 = parseCount(parts[2], reference.width, "--window");
+        w.y1 = parseCount(parts[3], reference.height, "--window");
+    }
+    if (parts.size() != 4 || w.empty()) {
+        throw InputError("--window: '" + text + "' is not x0,y0,x1,y1 within the " + std::to_string(reference.width) +
+                         "x" + std::to_string(reference.height) + " reference, nor auto[:H]");
+    }
+    return w;
+}
+
+void printError(const std::string& label, double ms, const ImageError& e) {
+    std::printf("%-34s %10.2f %9.4f %9.4f %8.3f %8.3f\n", label.c_str(), ms, e.whole, e.outside, e.peakRatio,
+                e.energyRatio);
+    std::fflush(stdout);
+}
+
+nlohmann::json errorJson(const ImageError& e) {
+    return {{"rmse", e.whole}, {"rmse_outside_window", e.outside}, {"peak_ratio", e.peakRatio},
+            {"energy_ratio", e.energyRatio}};
+}
+
+int run(int argc, char** argv) {
+    CLI::App app{"Error against time: each estimator's image against a converged reference", "photon-converge"};
+    std::string scenePath;
+    std::string referencePath;
+    std::string comparePath;
+    std::string backendName = "auto";
+    std::string estimators = "sppm,progressive,radius";
+    std::string windowText = "auto";
+    std::string jsonPath;
+    std::uint32_t maxFrames = 256;
+    BackendOptions options;
+    std::vector<std::string> overrides;
+    app.add_option("scene", scenePath, "Scene file (its render settings, then the options below)");
+    app.add_option("--reference", referencePath, "The converged image (.pfm or .exr)")->required();
+    app.add_option("--compare", comparePath, "Only compare this image (.pfm or .exr) with the reference");
+    app.add_option("--backend", backendName, "auto|cpu|cuda|vulkan")->check(CLI::IsMember({"auto", "cpu", "cuda", "vulkan"}));
+    app.add_option("--device", options.device, "GPU to use: index or part of its name");
+    app.add_option("--estimators", estimators, "Comma-separated estimators to measure");
+    app.add_option("--frames", maxFrames, "Frames of each estimator; checkpoints at 1, 2, 4, ... and this")
+        ->check(CLI::Range(1u, 1000000u));
+    app.add_option("--window", windowText, "The caustic window: auto[:H] about the reference's brightest pixel, or x0,y0,x1,y1");
+    app.add_option("--set", overrides, "KEY=VALUE: a render setting of the scene file (photons, width, seed, ...)");
+    app.add_option("--json", jsonPath, "Write the measurements as JSON");
+    if (int code = parseCommandLine(app, argc, argv); code >= 0) {
+        return code;
+    }
+    Image reference = readImage(referencePath);
+    Window window = parseWindow(windowText, reference);
+    std::printf("reference %s: %ux%u, window [%u, %u) x [%u, %u)\n", referencePath.c_str(), reference.width,
+                reference.height, window.x0, window.x1, window.y0, window.y1);
+    std::printf("%-34s %10s %9s %9s %8s %8s\n", "estimator, frames", "time ms", "rmse", "outside", "peak", "energy");
+    if (!comparePath.empty()) {
+        printError(comparePath, 0.0, compareWithReference(readImage(comparePath), reference, window));
+        return 0;
+    }
+    if (scenePath.empty()) {
+        throw InputError("a scene is needed (or --compare IMAGE)");
+    }
+    if (!jsonPath.empty()) {
+        checkOutputPath(jsonPath, "JSON");
+    }
+    Scene scene = loadSceneFile(scenePath);
+    RenderSettings base = scene.render;
+    for (const std::string& o : overrides) {
+        std::size_t eq = o.find('=');
+        const SettingSpec* spec = eq == std::string::npos ? nullptr : findSetting(o.substr(0, eq));
+        if (spec == nullptr) {
+            throw InputError("--set " + o + ": expected KEY=VALUE with a render setting's key");
+        }
+        setSetting(base, *spec, o.substr(eq + 1), "--set " + o.substr(0, eq));
+    }
+    if (base.width != reference.width || base.height != reference.height) {
+        throw InputError("--reference: " + referencePath + " is " + std::to_string(reference.width) + "x" +
+                         std::to_string(reference.height) + ", the render " + std::to_string(base.width) + "x" +
+                         std::to_string(base.height));
+    }
+    std::unique_ptr<Backend> backend = createBackend(backendName, options);
+    backend->setScene(scene);
+    nlohmann::json out;
+    out["scene"] = scene.name;
+    out["backend"] = backend->name();
+    out["device"] = backend->deviceName();
+    out["photons_per_frame"] = base.photons;
+    out["window"] = {window.x0, window.y0, window.x1, window.y1};
+    for (const std::string& name : split(estimators)) {
+        RenderSettings s = base;
+        setSetting(s, *findSetting("estimator"), name, "--estimators");
+        backend->setSettings(s);
+        double ms = 0.0;
+        std::uint32_t next = 1;
+        nlohmann::json rows = nlohmann::json::array();
+        for (std::uint32_t f = 1; f <= maxFrames; ++f) {
+            backend->renderFrame();
+            ms += backend->lastFrameStats().ms.total();
+            if (f == next || f == maxFrames) {
+                ImageError e = compareWithReference(backend->image(), reference, window);
+                printError(name + ", " + std::to_string(f), ms, e);
+                nlohmann::json row = errorJson(e);
+                row["frames"] = f;
+                row["ms"] = ms;
+                rows.push_back(row);
+                next *= 2;
+            }
+        }
+        out["estimators"][name] = rows;
+    }
+    if (!jsonPath.empty()) {
+        writeOutputFile(jsonPath, out.dump(2) + "\n", "JSON");
+    }
+    return 0;
+}
+
+}  // namespace
+}  // namespace photon
+
+int main(int argc, char** argv) {
+    return photon::runProgram("photon-converge", [&] { return photon::run(argc, argv); });
+}

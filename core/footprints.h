@@ -1,0 +1,52 @@
+// Automatic query radii that know the image: a pixel's footprint (its width at its visible point,
+// shared/sppm.h pixelFootprint) measured over a sparse grid of pixel centres, traced on the host
+// with the shared eye pass. A radius of a few footprints blurs a few pixels wherever the camera
+// looks, whatever the scene's extent (an object far outside the view changes nothing).
+#pragma once
+
+#include <cstdint>
+
+#include "frame_setup.h"
+#include "scene.h"
+#include "settings.h"
+
+namespace photon {
+
+struct Footprints {
+    float median = 0.0f;  // over the sampled pixels whose eye path ended on a surface
+    float high = 0.0f;    // the 90th percentile
+    bool any = false;     // some sampled eye path ended on a surface
+};
+
+// Traces up to 48 × 36 pixel centres of the image.
+Footprints measureFootprints(const Scene& scene, const CameraDesc& camera, const RenderSettings& settings);
+
+// Automatic radii in footprints (of the median footprint) for the single-frame estimators.
+inline constexpr float kAutoRadiusFootprints = 8.0f;         // the global map
+inline constexpr float kAutoCausticRadiusFootprints = 4.0f;  // the caustic map
+
+// sppm starts each pixel at its own footprint times a number of footprints chosen so that a
+// first disc holds about this many photons if they spread over the image (clamped to the range
+// below): few enough to keep detail, enough that the first frames are not all noise.
+inline constexpr float kSppmFirstPhotons[MAP_COUNT] = {64.0f, 16.0f};
+inline constexpr float kSppmFirstFootprintsMin[MAP_COUNT] = {1.5f, 1.0f};
+inline constexpr float kSppmFirstFootprintsMax[MAP_COUNT] = {16.0f, 8.0f};
+
+// What the frame's radii start from: the query radius of each map for the single-frame estimators
+// (settings, else the footprints, else 1% of the scene's diagonal), and under sppm the radius the
+// grid's cells must first hold.
+struct FrameRadii {
+    float radius[MAP_COUNT] = {};          // GridParams.radius (sppm: the radius the grid's cells follow)
+    float firstRadius[MAP_COUNT] = {};     // sppm: the first radius of every pixel; 0: from its footprint
+    float firstFootprints[MAP_COUNT] = {}; // sppm: the first radius in footprints at the pixel
+};
+
+// `budget` gives the photons of each map per frame (sppm's first radii).
+FrameRadii firstFrameRadii(const Scene& scene, const RenderSettings& settings, const Footprints& footprints,
+                           const PhotonBudget& budget);
+
+// sppm: the radius the next frame's cells follow, the median of the pixels that have photons
+// (the upper end of its bin of COUNTER_SPPM_HISTOGRAM); 0 if no pixel has any.
+float sppmCellRadius(const std::uint32_t* histogram);
+
+}  // namespace photon

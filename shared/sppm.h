@@ -1,0 +1,158 @@
+// Stochastic progressive photon mapping (Hachisuka & Jensen, "Stochastic Progressive Photon
+// Mapping", SIGGRAPH Asia 2009; as pbrt-v4's SPPMIntegrator). Each frame every pixel has a visible
+// point (its hit point: jittered, through the lens, along one of glass's two paths), and for each
+// photon map a radius R, a photon count N and a flux τ that persist from frame to frame. The M
+// photons within R this frame, with reflected flux Φ = Σ β f Φp, update them as
+//     N' = N + αM,    R' = R √(N' / (N + M)),    τ' = (τ + Φ) R'² / R²,
+// so radii shrink where photons are many (a caustic's focus first) and not where there are none.
+// After k frames the pixel's radiance is the mean direct light plus τ / (k π R²) for each map.
+// Direct light stays with the shadow rays of the eye pass.
+//
+// The first radius of a pixel is a number of pixel footprints at its visible point (the host picks
+// it from the photon density, FrameParams.firstFootprints*), so it knows the image, not the
+// scene's bounds. Radii then differ from pixel to pixel by orders of magnitude: the grid's cells
+// follow the median radius of the pixels with photons (each frame's GridParams.radius, from the
+// histogram COUNTER_SPPM_HISTOGRAM of the frame before), and a wider query visits more cells,
+// filtered (estimate.h), so that its cost stays that of its disc.
+#ifndef PHOTON_SHARED_SPPM_H
+#define PHOTON_SHARED_SPPM_H
+
+#include "gather.h"
+#include "progressive.h"
+
+PH_NAMESPACE_BEGIN
+
+// The width of one pixel at distance |p - camera| (a pinhole's footprint there).
+PH_FN float pixelFootprint(PH_IN(Camera) camera, uint height, vec3 p) {
+    return length(p - camera.position) * (2.0f * camera.tanHalfFovY / float(height));
+}
+
+PH_FN SppmPixel emptySppmPixel() {
+    SppmPixel s;
+    s.direct = vec3(0.0f);
+    s.countGlobal = 0.0f;
+    s.fluxGlobal = vec3(0.0f);
+    s.radiusGlobal = 0.0f;
+    s.fluxCaustic = vec3(0.0f);
+    s.radiusCaustic = 0.0f;
+    s.countCaustic = 0.0f;
+    s.pad0 = 0u;
+    s.pad1 = 0u;
+    s.pad2 = 0u;
+    return s;
+}
+
+// One map's statistics of one pixel.
+struct SppmEstimate {
+    vec3 flux;
+    float radius;
+    float count;
+};
+
+// This frame's photons of `map` at the visible point, folded into its statistics. Returns the
+// frame's own estimate Φ / (πR²) (for the single-frame image).
+PH_FN vec3 sppmUpdate(BUF_PARAM uint map, PH_IN(Shading) s, vec3 weight, float footprint, float u,
+                      PH_INOUT(SppmEstimate) e) {
+    GridParams grid = BUF(params).grids[map];
+    if (grid.photonCapacity == 0u) {
+        return vec3(0.0f);
+    }
+    if (e.radius == 0.0f) {
+        bool global = map == MAP_GLOBAL;
+        float first = global ? BUF(params).firstRadiusGlobal : BUF(params).firstRadiusCaustic;
+        e.radius = first > 0.0f ? first : footprint * (global ? BUF(params).firstFootprintsGlobal : BUF(params).firstFootprintsCaustic);
+    }
+    float r = e.radius;
+    vec4 q = radiusQuery(BUF_ARG grid, s, r, KERNEL_BOX, u);
+    vec3 phi = weight * vec3(q) * estimateScale(s);
+    float m = q.w;
+    vec3 frame = phi * (INV_PI / (r * r));
+    if (m > 0.0f) {
+        float count = e.count + BUF(params).alpha * m;
+        float shrink = count / (e.count + m);  // (R'/R)²
+        e.flux = (e.flux + phi) * shrink;
+        e.radius = r * sqrt(shrink);
+        e.count = count;
+    }
+    if (e.count > 0.0f) {
+        uint bits = floatBitsToUint(e.radius);
+        PH_ATOMIC_MAX(BUF(counters)[COUNTER_SPPM_RADIUS_GLOBAL + map], bits);
+        int bin = clamp(int(bits >> 23u) - 127 + int(SPPM_RADIUS_BINS / 2u), 0, int(SPPM_RADIUS_BINS) - 1);
+        PH_ATOMIC_ADD(BUF(counters)[COUNTER_SPPM_HISTOGRAM + map * SPPM_RADIUS_BINS + uint(bin)], 1u);
+    }
+    return frame;
+}
+
+// The gather stage under sppm: updates the pixel's statistics and returns this frame's own
+// estimate (frameRadiance; the accumulate stage makes the image from the statistics).
+PH_FN vec3 gatherSppm(BUF_PARAM uint pixel) {
+    HitPoint hp = BUF(hitPoints)[pixel];
+    uint view = BUF(params).view;
+    // (Not a ?: of a buffer element and a local: glslang gives the two struct types apart.)
+    SppmPixel state = emptySppmPixel();
+    if (BUF(params).accumulated > 0u) {
+        state = BUF(sppmPixels)[pixel];
+    }
+    state.direct += (hp.direct - state.direct) / float(BUF(params).accumulated + 1u);
+    vec3 frame = viewShowsDirect(view) ? hp.direct : vec3(0.0f);
+    if (hp.material != NONE) {
+        Shading s = hitPointShading(BUF_ARG hp);
+        Rng rng = rngCreate(pixel, BUF(params).frameIndex, BUF(params).seed, STREAM_GATHER);
+        float u = rngNext(rng);
+        float footprint = pixelFootprint(BUF(params).camera, BUF(params).height, hp.position);
+        SppmEstimate global;
+        global.flux = state.fluxGlobal;
+        global.radius = state.radiusGlobal;
+        global.count = state.countGlobal;
+        vec3 g = sppmUpdate(BUF_ARG MAP_GLOBAL, s, hp.weight, footprint, u, global);
+        state.fluxGlobal = global.flux;
+        state.radiusGlobal = global.radius;
+        state.countGlobal = global.count;
+        SppmEstimate caustic;
+        caustic.flux = state.fluxCaustic;
+        caustic.radius = state.radiusCaustic;
+        caustic.count = state.countCaustic;
+        vec3 c = sppmUpdate(BUF_ARG MAP_CAUSTIC, s, hp.weight, footprint, u, caustic);
+        state.fluxCaustic = caustic.flux;
+        state.radiusCaustic = caustic.radius;
+        state.countCaustic = caustic.count;
+        frame += (viewShowsMap(view, MAP_GLOBAL) ? g : vec3(0.0f)) + (viewShowsMap(view, MAP_CAUSTIC) ? c : vec3(0.0f));
+    }
+    BUF(sppmPixels)[pixel] = state;
+    return frame;
+}
+
+// The pixel's image after `frames` frames.
+PH_FN vec3 sppmRadiance(PH_IN(SppmPixel) state, uint frames, uint view) {
+    vec3 radiance = viewShowsDirect(view) ? state.direct : vec3(0.0f);
+    float k = float(frames);
+    if (viewShowsMap(view, MAP_GLOBAL) && state.radiusGlobal > 0.0f) {
+        radiance += state.fluxGlobal * (INV_PI / (k * state.radiusGlobal * state.radiusGlobal));
+    }
+    if (viewShowsMap(view, MAP_CAUSTIC) && state.radiusCaustic > 0.0f) {
+        radiance += state.fluxCaustic * (INV_PI / (k * state.radiusCaustic * state.radiusCaustic));
+    }
+    return radiance;
+}
+
+// The accumulate stage for every estimator: the running mean of the frames, or under sppm (other
+// than the grid view, which shows each frame's cells) the image from the pixel's statistics.
+PH_FN vec4 accumulatePixel(BUF_PARAM uint pixel) {
+    uint n = BUF(params).accumulated;
+    if (BUF(params).estimator == ESTIMATOR_SPPM && BUF(params).view != VIEW_GRID) {
+        return vec4(sppmRadiance(BUF(sppmPixels)[pixel], n + 1u, BUF(params).view), 1.0f);
+    }
+    return accumulateMean(BUF(accumulation)[pixel], BUF(frameRadiance)[pixel], n);
+}
+
+// The gather stage for every estimator and global mode (sppm: direct mode only).
+PH_FN vec3 gatherStage(BUF_PARAM uint pixel, uint estimator, uint globalMode) {
+    if (estimator == ESTIMATOR_SPPM && BUF(params).view != VIEW_GRID) {
+        return gatherSppm(BUF_ARG pixel);
+    }
+    return gatherPixel(BUF_ARG pixel, estimator, globalMode);
+}
+
+PH_NAMESPACE_END
+
+#endif

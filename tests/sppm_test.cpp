@@ -1,0 +1,171 @@
+// Stochastic progressive photon mapping and the automatic radii, on the CPU backend against the
+// converged references of tests/data/ (tests/data/README.md has the commands that made them):
+// the error falls with frames and below the progressive estimate's, a caustic's peak converges to
+// the reference's, an object far outside the view changes nothing, and a seed repeats exactly.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <string>
+
+#include "apps/backends.h"
+#include "core/error.h"
+#include "core/image_error.h"
+#include "core/scene_loader.h"
+#include "core/setting_specs.h"
+#include "backend_compare.h"
+#include "test_util.h"
+
+namespace photon {
+namespace {
+
+// The scene at the reference's size, pixel centres (as the references were made).
+RenderSettings referenceSettings(const Scene& scene, Estimator estimator, std::uint32_t photons) {
+    RenderSettings s = scene.render;
+    s.width = 64;
+    s.height = 48;
+    s.pixelCenter = true;
+    s.photons = photons;
+    s.estimator = estimator;
+    s.seed = 3;
+    return s;
+}
+
+// The backend's image after each of `checkpoints` frame counts.
+std::vector<Image> renderCheckpoints(const Scene& scene, const RenderSettings& settings, std::vector<std::uint32_t> checkpoints) {
+    auto backend = createBackend("cpu");
+    backend->setScene(scene);
+    backend->setSettings(settings);
+    std::vector<Image> images;
+    std::uint32_t frames = 0;
+    for (std::uint32_t target : checkpoints) {
+        while (frames < target) {
+            backend->renderFrame();
+            frames += 1;
+        }
+        images.push_back(backend->image());
+    }
+    return images;
+}
+
+TEST(Sppm, ErrorFallsWithFramesAndStaysBelowProgressive) {
+    Scene scene = loadSceneFile(test::scenesDir() + "/smallpt.json");
+    Image reference = readImage(test::dataPath("smallpt-64x48.pfm"));
+    std::vector<std::uint32_t> checkpoints = {4, 16, 64};
+    std::vector<double> sppm;
+    for (const Image& image : renderCheckpoints(scene, referenceSettings(scene, Estimator::Sppm, 40000), checkpoints)) {
+        sppm.push_back(relativeRmse(image, reference));
+    }
+    std::vector<double> progressive;
+    for (const Image& image : renderCheckpoints(scene, referenceSettings(scene, Estimator::Progressive, 40000), checkpoints)) {
+        progressive.push_back(relativeRmse(image, reference));
+    }
+    for (std::size_t i = 0; i < checkpoints.size(); ++i) {
+        std::printf("smallpt 64x48, %u frames of 40k photons: sppm %.4f, progressive %.4f\n", checkpoints[i], sppm[i],
+                    progressive[i]);
+    }
+    EXPECT_LT(sppm[1], sppm[0]);
+    EXPECT_LT(sppm[2], 0.75 * sppm[0]);
+    EXPECT_LT(sppm[2], progressive[2]);
+}
+
+TEST(Sppm, CausticPeakConvergesToTheReference) {
+    Scene scene = loadSceneFile(test::scenesDir() + "/caustic.json");
+    Image reference = readImage(test::dataPath("caustic-64x48.pfm"));
+    Window window = brightestWindow(reference, 2);
+    RenderSettings settings = referenceSettings(scene, Estimator::Sppm, 100000);
+    std::vector<std::uint32_t> checkpoints = {8, 64, 256};
+    std::vector<Image> images = renderCheckpoints(scene, settings, checkpoints);
+    std::vector<ImageError> errors;
+    for (std::size_t i = 0; i < images.size(); ++i) {
+        errors.push_back(compareWithReference(images[i], reference, window));
+        std::printf("caustic 64x48, %u frames: peak %.3f, energy %.3f of the reference's, rmse %.4f\n", checkpoints[i],
+                    errors[i].peakRatio, errors[i].energyRatio, errors[i].whole);
+    }
+    EXPECT_NEAR(errors.back().peakRatio, 1.0, 0.05);
+    EXPECT_NEAR(errors.back().energyRatio, 1.0, 0.05);
+    EXPECT_LT(std::abs(errors.back().peakRatio - 1.0), std::abs(errors.front().peakRatio - 1.0) + 0.01)
+        << "the focus sharpens as the radii shrink";
+}
+
+// An object far outside the view must not change the automatic radii nor the grid: the global
+// map's light is the same with it.
+TEST(Sppm, FarObjectKeepsTheIndirectLight) {
+    for (Estimator estimator : {Estimator::Radius, Estimator::Sppm}) {
+        Scene near = defaultScene();
+        Scene far = defaultScene();
+        std::uint32_t grey = far.addMaterial("grey", makeDiffuse(glm::vec3(0.5f)));
+        far.addSphere(glm::vec3(1e9f, 0.0f, 0.0f), 0.1f, grey);
+        far.addSphere(glm::vec3(0.0f, -1e9f, 0.0f), 0.1f, grey);
+        far.finalize();
+        RenderSettings s = near.render;
+        s.width = 64;
+        s.height = 48;
+        s.photons = 50000;
+        s.estimator = estimator;
+        s.view = View::Global;
+        double mean[2];
+        int i = 0;
+        for (const Scene* scene : {&near, &far}) {
+            std::vector<Image> images = renderCheckpoints(*scene, s, {4});
+            mean[i++] = meanLuminance(images.back());
+        }
+        SCOPED_TRACE(toString(estimator));
+        EXPECT_GT(mean[0], 0.0);
+        EXPECT_NEAR(mean[1] / mean[0], 1.0, 0.02) << "indirect light with and without the far spheres";
+    }
+}
+
+TEST(Sppm, SameSeedRepeatsAndACameraChangeRestarts) {
+    Scene scene = defaultScene();
+    RenderSettings s = scene.render;
+    s.width = 48;
+    s.height = 36;
+    s.photons = 20000;
+    s.estimator = Estimator::Sppm;
+    Image first = renderCheckpoints(scene, s, {3}).back();
+    Image second = renderCheckpoints(scene, s, {3}).back();
+    EXPECT_EQ(test::differingPixels(first, second), 0u);
+    // Three frames, a camera "change" that restarts, three frames: the statistics start again.
+    auto backend = createBackend("cpu");
+    backend->setScene(scene);
+    backend->setSettings(s);
+    for (int f = 0; f < 3; ++f) {
+        backend->renderFrame();
+    }
+    backend->setCamera(scene.camera);
+    for (int f = 0; f < 3; ++f) {
+        backend->renderFrame();
+    }
+    Image restarted = backend->image();
+    EXPECT_TRUE(allFinite(restarted));
+    EXPECT_LT(relativeRmse(restarted, first), 0.5);
+    EXPECT_GT(test::differingPixels(restarted, first), 0u) << "frames 4-6 have their own random numbers";
+}
+
+// Automatic radii come from the image: the same scene at twice the resolution gets half the radius.
+TEST(AutomaticRadius, FollowsThePixelFootprint) {
+    Scene scene = defaultScene();
+    RenderSettings s = scene.render;
+    float radius[2];
+    for (int i = 0; i < 2; ++i) {
+        s.width = i == 0 ? 160 : 320;
+        s.height = i == 0 ? 120 : 240;
+        FrameRadii r = firstFrameRadii(scene, s, measureFootprints(scene, scene.camera, s), planPhotons(scene, s));
+        radius[i] = r.radius[MAP_GLOBAL];
+        EXPECT_NEAR(r.radius[MAP_CAUSTIC], 0.5f * r.radius[MAP_GLOBAL], 1e-6f);
+    }
+    EXPECT_NEAR(radius[1] / radius[0], 0.5, 0.05);
+    s.radius = 0.07f;
+    EXPECT_FLOAT_EQ(firstFrameRadii(scene, s, measureFootprints(scene, scene.camera, s), planPhotons(scene, s)).radius[MAP_GLOBAL], 0.07f)
+        << "a given radius overrides";
+}
+
+TEST(SppmSettings, FinalGatherIsRefused) {
+    RenderSettings s;
+    s.estimator = Estimator::Sppm;
+    s.globalMode = GlobalMode::FinalGather;
+    EXPECT_THROW(validateSettings(s), InputError);
+}
+
+}  // namespace
+}  // namespace photon
