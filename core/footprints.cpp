@@ -73,6 +73,17 @@ FrameRadii firstFrameRadii(const Scene& scene, const RenderSettings& settings, c
     r.radius[MAP_CAUSTIC] = given[MAP_CAUSTIC] > 0.0f ? given[MAP_CAUSTIC]
                             : footprints.any          ? kAutoCausticRadiusFootprints * footprints.median
                                                       : 0.5f * global;
+    if (settings.grid == GridKind::Bounded) {
+        // An automatic radius stays within what the bounded grid's query reaches (a given one is
+        // refused by validateForScene instead).
+        glm::vec3 extent = scene.boundsMax - scene.boundsMin;
+        float cell = std::max({extent.x, extent.y, extent.z}) / float(settings.gridResolution);
+        for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
+            if (given[m] <= 0.0f) {
+                r.radius[m] = std::min(r.radius[m], kBoundedGridReachCells * cell);
+            }
+        }
+    }
     return r;
 }
 

@@ -25,6 +25,9 @@ Footprints measureFootprints(const Scene& scene, const CameraDesc& camera, const
 inline constexpr float kAutoRadiusFootprints = 8.0f;         // the global map
 inline constexpr float kAutoCausticRadiusFootprints = 4.0f;  // the caustic map
 
+// A bounded grid's query reaches this many cells from its centre (validateForScene).
+inline constexpr float kBoundedGridReachCells = 6.0f;
+
 // sppm starts each pixel at its own footprint times a number of footprints chosen so that a
 // first disc holds about this many photons if they spread over the image (clamped to the range
 // below): few enough to keep detail, enough that the first frames are not all noise.

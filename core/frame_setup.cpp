@@ -72,7 +72,9 @@ FrameParams makeFrameParams(const Scene& scene, const CameraDesc& camera, const 
     info.triangleCount = static_cast<std::uint32_t>(scene.triangles.size());
     info.lightCount = static_cast<std::uint32_t>(scene.lights.size());
     info.targetCount = budget.splitCaustics ? static_cast<std::uint32_t>(scene.targets.size()) : 0u;
-    info.bvhNodeCount = static_cast<std::uint32_t>(scene.bvhNodes.size());
+    bool linear = scene.primitiveRefs.size() <= LINEAR_PRIMITIVES_MAX;
+    info.bvhNodeCount = linear ? 0u : static_cast<std::uint32_t>(scene.bvhNodes.size());
+    info.linearCount = linear ? static_cast<std::uint32_t>(scene.primitiveRefs.size()) : 0u;
     info.background = scene.background;
 
     bool progressive = settings.estimator == Estimator::Progressive;
@@ -125,6 +127,11 @@ FrameParams makeFrameParams(const Scene& scene, const CameraDesc& camera, const 
     p.firstFootprintsGlobal = radii.firstFootprints[MAP_GLOBAL];
     p.firstFootprintsCaustic = radii.firstFootprints[MAP_CAUSTIC];
     p.alpha = settings.alpha;
+    auto batches = [](std::uint32_t paths) {
+        return std::clamp<std::uint32_t>((paths + SPPM_BATCH_PATHS / 2) / SPPM_BATCH_PATHS, 1u, SPPM_BATCHES_MAX);
+    };
+    p.batchesGlobal = batches(budget.globalPaths);
+    p.batchesCaustic = batches(budget.splitCaustics ? budget.causticPaths : budget.globalPaths);
     return p;
 }
 

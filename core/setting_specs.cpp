@@ -253,7 +253,7 @@ void validateForScene(const RenderSettings& settings, const Scene& scene, const 
         if (settings.grid == GridKind::Bounded) {
             // A query visits the cells its box overlaps: at most 16 along an axis.
             double cell = size / double(settings.gridResolution);
-            if (r > 6.0 * cell) {
+            if (r > kBoundedGridReachCells * cell * (1.0 + 1e-6)) {
                 fail(what, "too large for the bounded grid, whose cells are " + formatNumber(cell) +
                                " wide: at most 6 cells (raise --grid-resolution or use --grid hashed)");
             }

@@ -1,5 +1,5 @@
 #version 460
-// Photon dots, the seed's picture of the photon maps: every stored photon of a map projected to
+// Photon dots, Wu's picture of the photon maps: every stored photon of a map projected to
 // the screen (projectToPixel, the inverse of cameraRay) and added to its pixel, weighted by its
 // power, so that a pixel's brightness is proportional to the photon flux it sees. A photon hidden
 // behind the surface its pixel shows (the eye pass's hit point) is left out, unless occlusion is off.

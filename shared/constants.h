@@ -35,7 +35,7 @@ PH_CONST uint LIGHT_DIRECTIONAL = 5u;  // parallel light from infinity (the sun)
 
 // Emission profile of a point light (Light::profile).
 PH_CONST uint EMIT_ISOTROPIC = 0u;   // I = Φ/4π in every direction
-PH_CONST uint EMIT_HEMISPHERE = 1u;  // Lambertian point source about `axis`: I = Φ cosθ/π (the seed's light)
+PH_CONST uint EMIT_HEMISPHERE = 1u;  // Lambertian point source about `axis`: I = Φ cosθ/π (Wu's light)
 
 // Primitive kinds (Hit::kind).
 PH_CONST uint PRIM_SPHERE = 0u;
@@ -45,6 +45,10 @@ PH_CONST uint PRIM_TRIANGLE = 3u;
 PH_CONST uint PRIM_KIND_COUNT = 4u;
 
 // Radiance estimators (FrameParams::estimator).
+// Scenes of at most this many bounded primitives are intersected one by one, without the BVH: its
+// node fetches and stack cost more than they save (the Cornell box's 7 primitives: measured).
+PH_CONST uint LINEAR_PRIMITIVES_MAX = 8u;
+
 PH_CONST uint ESTIMATOR_CELL = 0u;         // Wu's estimate: the photons of the containing grid cell
 PH_CONST uint ESTIMATOR_RADIUS = 1u;       // fixed radius, filtered by a kernel
 PH_CONST uint ESTIMATOR_KNN = 2u;          // k nearest photons within a maximum radius (Jensen)
@@ -95,6 +99,11 @@ PH_CONST uint COUNTER_SPPM_RADIUS_CAUSTIC = 3u;
 PH_CONST uint SPPM_RADIUS_BINS = 64u;            // sppm: pixels with photons by the binary exponent of their radius
 PH_CONST uint COUNTER_SPPM_HISTOGRAM = 4u;       // the global map's bins, then the caustic map's
 PH_CONST uint COUNTER_COUNT = COUNTER_SPPM_HISTOGRAM + 2u * SPPM_RADIUS_BINS;
+
+// sppm: a frame's photons of a map count as one photon pass per this many emitted paths (at most
+// SPPM_BATCHES_MAX passes), so that radii shrink with the photons traced, not with the frames.
+PH_CONST uint SPPM_BATCH_PATHS = 16384u;
+PH_CONST uint SPPM_BATCHES_MAX = 256u;
 
 // photonBounce() result bits.
 PH_CONST uint STORE_GLOBAL = 1u;

@@ -75,47 +75,40 @@ PH_FN vec3 discExtent(vec3 n, float r, float t) {
 
 PH_FN Photon loadMapPhoton(BUF_PARAM uint i) { return BUF(sortedPhotons)[i]; }
 
-// Walks the cells that a box (x ± extent) overlaps. A query whose box fits a hashed grid's cell
-// (every estimator but sppm: cells of edge at least r) spans at most 3 cells per axis, whose keys
-// are distinct (grid.h). A wider one (an sppm pixel whose radius exceeds the cells) may meet a
+// Walks the cells that a box (x ± extent) overlaps. A query whose radius fits a hashed grid's cell
+// (every estimator but sppm: cells of edge at least r) visits at most 3 cells per axis, whose
+// keys are distinct (grid.h). A wider one (an sppm pixel whose radius exceeds the cells) may meet a
 // bucket twice: it is `filtered`, keeping only the photons of the cell it is visiting.
 struct CellQuery {
     ivec3 lo;
     ivec3 hi;
-    ivec3 cell;     // the next cell to visit
-    ivec3 current;  // the cell being visited
+    ivec3 cell;  // the cell being visited (before the first: one to the left of lo)
     bool filtered;
 };
 
-PH_FN CellQuery beginCellQuery(vec3 x, vec3 extent, PH_IN(GridParams) grid) {
+PH_FN CellQuery beginCellQuery(vec3 x, vec3 extent, float radius, PH_IN(GridParams) grid) {
     CellQuery q;
     q.lo = cellOf(x - extent, grid);
     q.hi = cellOf(x + extent, grid);
     q.filtered = false;
     if (grid.kind == GRID_HASHED) {
-        if (all(lessThanEqual(extent, vec3(grid.cellSize)))) {
+        if (radius <= grid.cellSize) {
             q.hi = min(q.hi, q.lo + ivec3(2));  // rounding at a cell boundary must not add a fourth
         } else {
             q.filtered = any(greaterThan(q.hi - q.lo, ivec3(2)));
         }
     }
-    q.cell = q.lo;
-    q.current = q.lo;
+    q.cell = q.lo - ivec3(1, 0, 0);
     return q;
 }
 
 // Whether a photon found through the visited cell's bucket lies in that cell (always, unless the
 // query is filtered).
 PH_FN bool inVisitedCell(PH_IN(CellQuery) q, PH_IN(GridParams) grid, vec3 position) {
-    return !q.filtered || all(equal(cellOf(position, grid), q.current));
+    return !q.filtered || all(equal(cellOf(position, grid), q.cell));
 }
 
 PH_FN bool nextCell(PH_INOUT(CellQuery) q, PH_IN(GridParams) grid, PH_OUT(uint) key) {
-    if (q.cell.z > q.hi.z) {
-        return false;
-    }
-    q.current = q.cell;
-    key = cellKey(q.cell, grid);
     q.cell.x += 1;
     if (q.cell.x > q.hi.x) {
         q.cell.x = q.lo.x;
@@ -125,6 +118,10 @@ PH_FN bool nextCell(PH_INOUT(CellQuery) q, PH_IN(GridParams) grid, PH_OUT(uint) 
             q.cell.z += 1;
         }
     }
+    if (q.cell.z > q.hi.z) {
+        return false;
+    }
+    key = cellKey(q.cell, grid);
     return true;
 }
 
@@ -151,28 +148,31 @@ PH_FN uint subsampleStart(uint begin, uint stride, float u) { return begin + min
 // reflected flux to sum.xyz, and 1 to sum.w. (Adding in place, not returning zero for the many
 // photons outside: x + 0 is not free under IEEE rules.)
 PH_FN void addRadiusContribution(PH_INOUT(vec4) sum, PH_IN(Shading) s, PH_IN(Photon) p, float r2, float invR2,
-                                 float thickness, uint kernel) {
+                                 float thickness, uint kernel, bool count) {
     vec3 d = p.position - s.position;
     float d2 = dot(d, d);
     if (d2 < r2 && abs(dot(d, s.geometricNormal)) <= thickness) {
-        sum += vec4(photonReflectance(s, p.incoming) * p.power * kernelProfile(kernel, d2 * invR2), 1.0f);
+        sum += vec4(photonReflectance(s, p.incoming) * p.power * kernelProfile(kernel, d2 * invR2), count ? 1.0f : 0.0f);
     }
 }
 
 // The photons within the disc of radius r at s: Σ f·Φp·K (xyz, before estimateScale and the
-// normalisation by the disc's area) and how many there are (w), both weighted for subsampling.
+// normalisation by the disc's area) and, if `count`, how many there are (w; else 0), both weighted
+// for subsampling. (Callers pass a constant `count`: the estimates that need no count keep its
+// registers.)
 // One flat loop over (cell, photon) pairs, in which each iteration either tests a photon or moves
 // to the next cell: on SIMD hardware the threads of a warp then drift through their cells
 // independently instead of waiting for each other at every cell boundary (the "if-if" loop of
 // Aila & Laine, "Understanding the Efficiency of Ray Traversal on GPUs", HPG 2009).
-PH_FN vec4 radiusQuery(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float radius, uint kernel, float u) {
+PH_FN vec4 radiusQuery(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float radius, uint kernel, float u,
+                       bool count) {
     float r2 = radius * radius;
     float invR2 = 1.0f / r2;
     float thickness = DISC_THICKNESS * radius;
     uint budget = BUF(params).gatherBudget;
     vec4 sum = vec4(0.0f);
     vec4 cellSum = vec4(0.0f);
-    CellQuery q = beginCellQuery(s.position, discExtent(s.geometricNormal, radius, thickness), grid);
+    CellQuery q = beginCellQuery(s.position, discExtent(s.geometricNormal, radius, thickness), radius, grid);
     uint i = 0u;
     uint end = 0u;
     uint stride = 1u;
@@ -192,7 +192,7 @@ PH_FN vec4 radiusQuery(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float
         }
         Photon p = loadMapPhoton(BUF_ARG i);
         if (inVisitedCell(q, grid, p.position)) {
-            addRadiusContribution(cellSum, s, p, r2, invR2, thickness, kernel);
+            addRadiusContribution(cellSum, s, p, r2, invR2, thickness, kernel, count);
         }
         i += stride;
     }
@@ -201,7 +201,7 @@ PH_FN vec4 radiusQuery(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float
 
 // The radius estimate: the query over the disc's area, for the kernel.
 PH_FN vec3 estimateRadius(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float radius, uint kernel, float u) {
-    vec3 sum = vec3(radiusQuery(BUF_ARG grid, s, radius, kernel, u));
+    vec3 sum = vec3(radiusQuery(BUF_ARG grid, s, radius, kernel, u, false));
     float invR2 = 1.0f / (radius * radius);
     return sum * estimateScale(s) * (kernelNorm(kernel) * INV_PI * invR2);
 }
@@ -232,7 +232,7 @@ PH_FN vec3 estimateKnn(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float
     uint count = 0u;
     float maxR2 = maxRadius * maxRadius;
     float thickness = DISC_THICKNESS * maxRadius;
-    CellQuery q = beginCellQuery(s.position, discExtent(s.geometricNormal, maxRadius, thickness), grid);
+    CellQuery q = beginCellQuery(s.position, discExtent(s.geometricNormal, maxRadius, thickness), maxRadius, grid);
     uint key;
     while (nextCell(q, grid, key)) {
         uint begin;

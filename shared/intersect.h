@@ -251,10 +251,11 @@ PH_FN TraceResult traceRay(BUF_PARAM PH_IN(Ray) ray, uint query) {
             }
         }
     }
+    RayFrame frame = makeRayFrame(ray);
     if (BUF(params).scene.bvhNodeCount == 0u) {
+        traceLeaf(BUF_ARG 0u, BUF(params).scene.linearCount, ray, frame, query, result);
         return result;
     }
-    RayFrame frame = makeRayFrame(ray);
     uint stack[BVH_STACK_SIZE];
     uint depth = 0u;
     uint node = 0u;

@@ -113,7 +113,9 @@ struct PH_ALIGN16 Camera {
 
 struct PH_ALIGN16 SceneInfo {
     uint sphereCount; uint planeCount; uint quadCount; uint triangleCount;
-    uint lightCount; uint targetCount; uint bvhNodeCount; uint pad0;  // bvhNodeCount 0: no bounded primitives
+    uint lightCount; uint targetCount; uint bvhNodeCount; uint linearCount;
+    // bvhNodeCount 0: no hierarchy is traversed; linearCount: bounded primitives tested one by one
+    // instead (a scene too small for a hierarchy to pay), primitiveRefs[0 .. linearCount)
     vec3 background; float pad1;       // radiance of rays that leave the scene
 };
 
@@ -141,8 +143,9 @@ struct PH_ALIGN16 FrameParams {
     // averaged into the accumulation buffer (the progressive index i); gatherBudget: photons a
     // query visits per cell before it subsamples the cell (0: all)
     float firstRadiusGlobal; float firstRadiusCaustic; float firstFootprintsGlobal; float firstFootprintsCaustic;
-    float alpha; uint pad1; uint pad2; uint pad3;
-    // sppm: a pixel's first radius of each map (0: firstFootprints* of its footprint, sppm.h); α
+    float alpha; uint batchesGlobal; uint batchesCaustic; uint pad1;
+    // sppm: a pixel's first radius of each map (0: firstFootprints* of its footprint, sppm.h); α;
+    // the photon passes each map's photons of this frame count as (sppm.h)
 };
 
 // ---- Photon maps ------------------------------------------------------------------------------
@@ -200,7 +203,7 @@ PH_SIZE(CausticTarget, 16); PH_OFFSET(CausticTarget, radius, 12);
 PH_SIZE(Camera, 64); PH_OFFSET(Camera, lensRadius, 12); PH_OFFSET(Camera, forward, 16);
 PH_OFFSET(Camera, focusDistance, 28); PH_OFFSET(Camera, right, 32); PH_OFFSET(Camera, tanHalfFovY, 44);
 PH_OFFSET(Camera, up, 48); PH_OFFSET(Camera, aspect, 60);
-PH_SIZE(SceneInfo, 48); PH_OFFSET(SceneInfo, lightCount, 16); PH_OFFSET(SceneInfo, bvhNodeCount, 24);
+PH_SIZE(SceneInfo, 48); PH_OFFSET(SceneInfo, lightCount, 16); PH_OFFSET(SceneInfo, bvhNodeCount, 24); PH_OFFSET(SceneInfo, linearCount, 28);
 PH_OFFSET(SceneInfo, background, 32);
 PH_SIZE(GridParams, 48); PH_OFFSET(GridParams, cellSize, 12); PH_OFFSET(GridParams, resolution, 16);
 PH_OFFSET(GridParams, cellOffset, 28); PH_OFFSET(GridParams, photonOffset, 32);

@@ -4,16 +4,23 @@
 // photon map a radius R, a photon count N and a flux τ that persist from frame to frame. The M
 // photons within R this frame, with reflected flux Φ = Σ β f Φp, update them as
 //     N' = N + αM,    R' = R √(N' / (N + M)),    τ' = (τ + Φ) R'² / R²,
-// so radii shrink where photons are many (a caustic's focus first) and not where there are none.
-// After k frames the pixel's radiance is the mean direct light plus τ / (k π R²) for each map.
-// Direct light stays with the shadow rays of the eye pass.
+// so radii shrink where photons are found and not where there are none. A frame of a million
+// photons counts as B photon passes of SPPM_BATCH_PATHS each (FrameParams.batches*), as
+// Hachisuka's smallppm traces its photons in passes of a thousand: the update runs B times, each
+// with a B-th of the frame's photons and of their flux, thinned to the shrinking disc under the
+// estimate's own assumption of a density that is even across the disc. Radii then shrink with the
+// photons traced (as the total photon count to the power -(1 - α)/2), not with the frames, and a
+// caustic's focus sharpens at any photons per frame. After k frames the pixel's radiance is the
+// mean direct light plus τ / (k π R²) for each map. Direct light stays with the shadow rays of the
+// eye pass.
 //
 // The first radius of a pixel is a number of pixel footprints at its visible point (the host picks
 // it from the photon density, FrameParams.firstFootprints*), so it knows the image, not the
 // scene's bounds. Radii then differ from pixel to pixel by orders of magnitude: the grid's cells
 // follow the median radius of the pixels with photons (each frame's GridParams.radius, from the
-// histogram COUNTER_SPPM_HISTOGRAM of the frame before), and a wider query visits more cells,
-// filtered (estimate.h), so that its cost stays that of its disc.
+// histogram COUNTER_SPPM_HISTOGRAM of the frame before), a wider query visits more cells,
+// filtered (estimate.h), so that its cost stays that of its disc, and a pixel without photons is
+// held to the median.
 #ifndef PHOTON_SHARED_SPPM_H
 #define PHOTON_SHARED_SPPM_H
 
@@ -62,16 +69,35 @@ PH_FN vec3 sppmUpdate(BUF_PARAM uint map, PH_IN(Shading) s, vec3 weight, float f
         float first = global ? BUF(params).firstRadiusGlobal : BUF(params).firstRadiusCaustic;
         e.radius = first > 0.0f ? first : footprint * (global ? BUF(params).firstFootprintsGlobal : BUF(params).firstFootprintsCaustic);
     }
+    if (e.count == 0.0f) {
+        // A pixel that has found no photon yet (its τ is 0) is held to the radius the cells follow:
+        // where a map has no light (most pixels, for the caustic map) queries stay as cheap as
+        // the lit pixels' ones.
+        e.radius = min(e.radius, grid.radius);
+    }
     float r = e.radius;
-    vec4 q = radiusQuery(BUF_ARG grid, s, r, KERNEL_BOX, u);
+    vec4 q = radiusQuery(BUF_ARG grid, s, r, KERNEL_BOX, u, true);
     vec3 phi = weight * vec3(q) * estimateScale(s);
     float m = q.w;
     vec3 frame = phi * (INV_PI / (r * r));
     if (m > 0.0f) {
-        float count = e.count + BUF(params).alpha * m;
-        float shrink = count / (e.count + m);  // (R'/R)²
-        e.flux = (e.flux + phi) * shrink;
-        e.radius = r * sqrt(shrink);
+        uint batches = max(map == MAP_GLOBAL ? BUF(params).batchesGlobal : BUF(params).batchesCaustic, 1u);
+        float alpha = BUF(params).alpha;
+        float batchPhotons = m / float(batches);
+        vec3 batchFlux = phi / float(batches);
+        float area = 1.0f;  // (R_b / R)²: the part of the frame's disc that pass b still covers
+        float count = e.count;
+        vec3 flux = e.flux;
+        for (uint b = 0u; b < batches; ++b) {
+            float found = batchPhotons * area;
+            float next = count + alpha * found;
+            float shrink = next / (count + found);  // (R'/R)² of this pass
+            flux = (flux + batchFlux * area) * shrink;
+            area *= shrink;
+            count = next;
+        }
+        e.flux = flux;
+        e.radius = r * sqrt(area);
         e.count = count;
     }
     if (e.count > 0.0f) {

@@ -8,7 +8,7 @@ scenes=$2
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 failures=0
-small=(--backend cpu --width 32 --height 24 --photons 5000)
+small=(--backend cpu --width 32 --height 24 --photons 5000 --frames 1)
 
 # expect <code> <stderr substring or ""> <args...>
 expect() {
@@ -36,6 +36,19 @@ done
 python3 -c "import json,sys; j=json.load(open(sys.argv[1])); assert j['frames']==2 and 'gather' in j['stages'] and j['photons']['global']['stored']>0" "$tmp/stats.json" \
   || { echo "FAIL: stats JSON"; failures=$((failures + 1)); }
 
+# No length anywhere: about kDefaultRenderSeconds of frames, sppm; --time with --frames: the frames cap it.
+expect 0 "" --backend cpu --width 32 --height 24 --photons 5000 -o "$tmp/d.png" --stats "$tmp/d.json"
+python3 -c "import json,sys; j=json.load(open(sys.argv[1])); assert j['estimator']=='sppm' and j['frames']>1 and 1.9<=j['wall_seconds']<10, j" "$tmp/d.json" \
+  || { echo "FAIL: the default render is not 2 s of sppm"; failures=$((failures + 1)); }
+expect 0 "" --backend cpu --width 32 --height 24 --photons 5000 -o "$tmp/t.png" --stats "$tmp/t.json" --time 0.3 --estimator radius
+python3 -c "import json,sys; j=json.load(open(sys.argv[1])); assert j['estimator']=='radius' and j['frames']>1 and j['wall_seconds']<5, j" "$tmp/t.json" \
+  || { echo "FAIL: --time with an estimator"; failures=$((failures + 1)); }
+expect 0 "" --backend cpu --width 32 --height 24 --photons 5000 -o "$tmp/t.png" --stats "$tmp/t.json" --time 100 --frames 3
+python3 -c "import json,sys; j=json.load(open(sys.argv[1])); assert j['frames']==3 and j['estimator']=='sppm', j" "$tmp/t.json" \
+  || { echo "FAIL: --frames caps --time"; failures=$((failures + 1)); }
+expect 0 "" "$scenes/bunny.json" --backend cpu --width 32 --height 24 --photons 5000 --frames 1 -o "$tmp/bunny.png"
+expect 0 "" "$scenes/textured.glb" --backend cpu --width 32 --height 24 --photons 5000 --frames 1 -o "$tmp/textured.png"
+
 # Bad input: exit 2 with the file, the place and the reason.
 printf '{ "camera": { "position": [0, 0, 1], }' > "$tmp/broken.json"
 expect 2 "broken.json: line 1" "$tmp/broken.json" "${small[@]}" -o "$tmp/x.png"
@@ -50,6 +63,14 @@ expect 2 "--estimator: unknown value 'nearest'" "${small[@]}" --estimator neares
 expect 2 "unknown image format" "${small[@]}" -o "$tmp/x.bmp"
 expect 2 "" "${small[@]}" --no-such-option
 expect 2 "opencl not in" --backend opencl
+
+# Bad model files: exit 2 with the file, the OBJ line or the glTF pointer, and the reason.
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n' > "$tmp/bad.obj"
+expect 2 "bad.obj: line 4: vertex index '4' out of range" "$tmp/bad.obj" "${small[@]}" -o "$tmp/x.png"
+printf '{"asset": {"version": "2.0"}, "extensionsRequired": ["KHR_draco_mesh_compression"], "extensionsUsed": ["KHR_draco_mesh_compression"]}' > "$tmp/draco.gltf"
+expect 2 "draco.gltf: /extensionsRequired/0: the required extension 'KHR_draco_mesh_compression' is not supported" "$tmp/draco.gltf" "${small[@]}" -o "$tmp/x.png"
+printf '{"camera": {"position": [0, 1, 4], "look_at": [0, 1, 0]}, "materials": {}, "lights": [{"type": "point", "position": [0, 3, 0], "power": 10}], "objects": [{"type": "mesh", "file": "gone.obj"}]}' > "$tmp/gone.json"
+expect 2 "gone.json: /objects/0/file: " "$tmp/gone.json" "${small[@]}" -o "$tmp/x.png"
 
 # Runtime failure: a backend this machine cannot run.
 if ! command -v nvidia-smi >/dev/null 2>&1; then

@@ -14,7 +14,7 @@ cleanup() {
 }
 trap cleanup EXIT
 failures=0
-small=(--backend cpu --width 32 --height 24 --photons 5000 -q)
+small=(--backend cpu --width 32 --height 24 --photons 5000 --frames 1 -q)
 
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 

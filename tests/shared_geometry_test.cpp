@@ -230,7 +230,7 @@ TEST(Grid, NeighbourhoodsNeverShareABucket) {
 TEST(CellQuery, CoversTheBallWithAtMostThreeCellsPerAxis) {
     GridParams g = hashedGrid(0.1f);  // cells of edge r for r = 0.1
     for (vec3 x : {vec3(0.05f, -0.02f, 0.31f), vec3(-0.1f, 0.0f, 0.1f), vec3(0.0f)}) {
-        CellQuery q = beginCellQuery(x, vec3(0.1f), g);
+        CellQuery q = beginCellQuery(x, vec3(0.1f), 0.1f, g);
         int cells = 0;
         std::uint32_t key;
         while (nextCell(q, g, key)) {
@@ -242,12 +242,37 @@ TEST(CellQuery, CoversTheBallWithAtMostThreeCellsPerAxis) {
     }
 }
 
+// A query wider than the cells (an sppm pixel's radius) visits every cell it overlaps, and keeps
+// only the photons of the cell it visits: a photon is found once, however the buckets collide.
+TEST(CellQuery, WiderQueriesAreFilteredToTheVisitedCell) {
+    GridParams g = hashedGrid(0.1f);
+    g.cellCount = 64;  // so small that distant cells share buckets
+    vec3 x(0.03f, 0.04f, 0.05f);
+    float r = 0.45f;
+    CellQuery q = beginCellQuery(x, vec3(r), r, g);
+    EXPECT_TRUE(q.filtered);
+    vec3 photon(0.31f, -0.22f, 0.12f);
+    ivec3 own = cellOf(photon, g);
+    int found = 0;
+    int cells = 0;
+    std::uint32_t key;
+    while (nextCell(q, g, key)) {
+        cells += 1;
+        if (key == photonCellKey(photon, g) && inVisitedCell(q, g, photon)) {
+            found += 1;
+            EXPECT_EQ(q.cell, own);
+        }
+    }
+    EXPECT_EQ(cells, 10 * 10 * 10);
+    EXPECT_EQ(found, 1);
+}
+
 TEST(CellQuery, DiscOfAnAxisAlignedWallIsOneCellThick) {
     GridParams g = hashedGrid(0.1f);
     vec3 e = discExtent(vec3(0, 0, 1), 0.1f, 0.025f);
     EXPECT_FLOAT_EQ(e.x, 0.1f);
     EXPECT_FLOAT_EQ(e.z, 0.025f);
-    CellQuery q = beginCellQuery(vec3(0.05f, 0.05f, 0.05f), e, g);
+    CellQuery q = beginCellQuery(vec3(0.05f, 0.05f, 0.05f), e, 0.1f, g);
     int cells = 0;
     std::uint32_t key;
     while (nextCell(q, g, key)) {

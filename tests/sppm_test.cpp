@@ -72,8 +72,12 @@ TEST(Sppm, CausticPeakConvergesToTheReference) {
     Scene scene = loadSceneFile(test::scenesDir() + "/caustic.json");
     Image reference = readImage(test::dataPath("caustic-64x48.pfm"));
     Window window = brightestWindow(reference, 2);
-    RenderSettings settings = referenceSettings(scene, Estimator::Sppm, 100000);
-    std::vector<std::uint32_t> checkpoints = {8, 64, 256};
+    // The radii shrink with the frame count (R² ~ k^-(1-α)): many small frames. The window's peak
+    // and energy first overshoot (near the focus, photons of the bright core still fall within
+    // the wide discs of its neighbours) and then settle: measured 1.11 / 1.07 at 256 frames,
+    // 1.06 / 1.02 at 1024, 1.025 / 1.008 at 2048.
+    RenderSettings settings = referenceSettings(scene, Estimator::Sppm, 25000);
+    std::vector<std::uint32_t> checkpoints = {16, 2048};
     std::vector<Image> images = renderCheckpoints(scene, settings, checkpoints);
     std::vector<ImageError> errors;
     for (std::size_t i = 0; i < images.size(); ++i) {
@@ -82,9 +86,8 @@ TEST(Sppm, CausticPeakConvergesToTheReference) {
                     errors[i].peakRatio, errors[i].energyRatio, errors[i].whole);
     }
     EXPECT_NEAR(errors.back().peakRatio, 1.0, 0.05);
-    EXPECT_NEAR(errors.back().energyRatio, 1.0, 0.05);
-    EXPECT_LT(std::abs(errors.back().peakRatio - 1.0), std::abs(errors.front().peakRatio - 1.0) + 0.01)
-        << "the focus sharpens as the radii shrink";
+    EXPECT_NEAR(errors.back().energyRatio, 1.0, 0.03);
+    EXPECT_LT(errors.back().whole, 0.5 * errors.front().whole) << "the focus sharpens as the radii shrink";
 }
 
 // An object far outside the view must not change the automatic radii nor the grid: the global

@@ -1,4 +1,4 @@
-// Photon dots, the seed's picture of the photon maps: after the backend's frame, every stored
+// Photon dots, Wu's picture of the photon maps: after the backend's frame, every stored
 // photon of both maps is projected to the screen and added to its pixel, weighted by its power
 // (glsl/viewer_dots.comp). The pass reads the backend's buffers through the backend's own
 // descriptor set (set 0 of its layout) and writes a dot buffer of its own (set 1), which the

@@ -2,7 +2,7 @@
 # Runs on the GPU machine (see ../shared/device/README.md) from the project root, with the
 # binaries of `cmake --preset device && cmake --build --preset device` carried in build-device/bin
 # and .devlibs/ prepared. Writes logs and JSON under $OUT.
-#   tools/device/session.sh tests sanitize bench grid launch vulkan
+#   tools/device/session.sh tests sanitize sanitize-new frames meshes converge pictures bundle-all
 set -uo pipefail
 source .devlibs/setup.sh >/dev/null
 bin=build-device/bin
@@ -72,6 +72,66 @@ for step in "$@"; do
         $bin/photon-render scenes/$scene.json --backend cuda --width 1280 --height 960 --photons 2000000 --frames 256 \
           -o "$out/$scene.png" --stats "$out/$scene-stats.json" -q
       done ;;
+    sanitize-new)
+      # The kernels of the mesh, sppm and primary-ray work: the BVH traversal, textures, emissive
+      # triangles, directional light, the sppm gather and accumulate.
+      for tool in memcheck racecheck; do
+        for run in "scenes/bunny.json --estimator sppm --frames 3" "scenes/textured.glb --estimator sppm --frames 3" \
+                   "scenes/smallpt.json --estimator sppm --frames 3 --deterministic"; do
+          compute-sanitizer --tool $tool --error-exitcode 9 $bin/photon-render $run --backend cuda --width 96 --height 72 \
+            --photons 30000 -o "$out/sanitize.png" -q >>"$out/$tool-new.log" 2>&1
+          summary+=("$tool $run: exit $?")
+        done
+      done
+      compute-sanitizer --tool memcheck --error-exitcode 9 $bin/photon-bench --backends cuda --scenes mesh:20000 \
+        --resolutions 96x72 --photons 20000 --frames 2 --warmup 1 --primary-rays >>"$out/memcheck-new.log" 2>&1
+      summary+=("memcheck primary rays: exit $?")
+      grep -E "ERROR SUMMARY|RACECHECK SUMMARY" "$out"/memcheck-new.log "$out"/racecheck-new.log | sort | uniq -c | head ;;
+    meshes)
+      # Issue 10: BVH build, primary rays and photon paths over triangle counts, the mesh scenes.
+      $bin/photon-bench --scenes-dir scenes --backends cuda,vulkan --scenes mesh:10000,mesh:100000,mesh:1000000,mesh:10000000 \
+        --resolutions 1920x1080 --photons 1000000 --frames 30 --primary-rays --json "$out/meshes.json" | tee "$out/meshes.log"
+      $bin/photon-bench --scenes-dir scenes --backends cuda,vulkan --scenes bunny,scenes/textured.glb,mesh-glass:1000000 \
+        --resolutions 1920x1080 --photons 1000000 --frames 50 --primary-rays --json "$out/mesh-scenes.json" | tee "$out/mesh-scenes.log" ;;
+    frames)
+      # The analytic Cornell box's frame (no regression), each estimator, and the cost of --deterministic.
+      $bin/photon-bench --backends cuda,vulkan --resolutions 1920x1080,3840x2160 --photons 1000000 --frames 50 \
+        --vary estimator=radius,sppm --json "$out/frames.json" | tee "$out/frames.log"
+      $bin/photon-bench --backends cuda,vulkan --resolutions 1920x1080 --photons 1000000 --frames 50 \
+        --vary deterministic=false,true --json "$out/deterministic.json" | tee "$out/deterministic.log" ;;
+    frames-ab)
+      # The Cornell frame before this work (photon-bench-old: commit 074b423), now without the
+      # read-only loads (photon-bench-plain: -DPHOTON_NO_READ_ONLY_LOADS) and now, each carried
+      # beside the build, at the old defaults: the progressive estimator, radii 0.04 and 0.02.
+      for b in photon-bench-old photon-bench-plain photon-bench; do
+        echo "== $b" | tee -a "$out/ab.log"
+        $bin/$b --backends cuda,vulkan --resolutions 1920x1080,3840x2160 --photons 1000000 --frames 64 \
+          --estimator progressive --vary radius=0.04 --vary caustic_radius=0.02 2>&1 | grep -v "first image" | tee -a "$out/ab.log"
+      done
+      for b in photon-bench-plain photon-bench; do
+        echo "== $b meshes" | tee -a "$out/ab.log"
+        $bin/$b --scenes-dir scenes --backends cuda --scenes bunny,mesh:1000000 --resolutions 1920x1080 --photons 1000000 \
+          --frames 50 --primary-rays 2>&1 | grep -v "first image" | tee -a "$out/ab.log"
+      done ;;
+    converge)
+      # Issue 11: converged references (sppm, 4096 frames of 4M photons), then error against GPU time.
+      for scene in smallpt caustic cornell; do
+        $bin/photon-render scenes/$scene.json --backend cuda --estimator sppm --width 256 --height 192 --pixel-center \
+          --frames ${REF_FRAMES:-4096} --photons 4000000 --seed 99 -o "$out/ref-$scene.pfm" -q
+        summary+=("reference $scene: exit $?")
+        $bin/photon-converge scenes/$scene.json --reference "$out/ref-$scene.pfm" --backend cuda \
+          --estimators sppm,progressive,radius,knn,cell --set width=256 --set height=192 --set pixel_center=true \
+          --set photons=1000000 --frames ${CONVERGE_FRAMES:-1024} --json "$out/converge-$scene.json" | tee "$out/converge-$scene.log"
+      done ;;
+    pictures)
+      for scene in bunny.json textured.glb smallpt.json; do
+        $bin/photon-render scenes/$scene --backend cuda --width 1280 --height 960 --photons 2000000 --time 3 \
+          -o "$out/picture-${scene%.*}.png" -q
+        summary+=("picture $scene: exit $?")
+      done ;;
+    bundle-all)
+      # At most 8 files come back: everything in one archive.
+      (cd "$out" && tar czf /tmp/all.tgz . && find . -type f -delete && mv /tmp/all.tgz .) ;;
       bundle)
       # Only 8 files come back: everything but the pictures goes into one archive.
       (cd "$out" && tar czf /tmp/results.tgz --exclude '*.png' --exclude '*.exr' . &&
