@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <stdexcept>
 
 #include "error.h"
 #include "setting_specs.h"
@@ -55,6 +56,14 @@ void Backend::setCamera(const CameraDesc& camera) {
 }
 
 void Backend::resetAccumulation() { accumulated_ = 0; }
+
+void Backend::setPathSplit(const PathSplit& split) {
+    if (split.ranks == 0 || split.rank >= split.ranks) {
+        throw std::invalid_argument("path split: rank " + std::to_string(split.rank) + " of " + std::to_string(split.ranks));
+    }
+    split_ = split;
+    accumulated_ = 0;
+}
 
 void Backend::prepare() {
     if (!sceneDirty_ && !allocationDirty_) {
@@ -127,7 +136,7 @@ const FrameParams& Backend::beginFrame() {
     if (accumulated_ == 0 || settings_.estimator != Estimator::Sppm) {
         radii_ = firstRadii_;
     }
-    params_ = makeFrameParams(scene_, camera_, settings_, budget_, frameIndex_, accumulated_, radii_);
+    params_ = makeFrameParams(scene_, camera_, settings_, budget_, frameIndex_, accumulated_, radii_, split_);
     return params_;
 }
 

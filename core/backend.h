@@ -83,6 +83,8 @@ public:
     void setSettings(const RenderSettings& settings);
     void setCamera(const CameraDesc& camera);
     void resetAccumulation();
+    // This renderer's share of each frame's photon paths (multi-GPU rendering; default: all).
+    void setPathSplit(const PathSplit& split);
 
     // Uploads the scene and allocates for the settings if anything changed. Checks the machine's
     // limits (memory, buffer sizes) first and throws InputError, before any work, if the request
@@ -145,6 +147,7 @@ private:
     Footprints footprints_;       // of the camera and image (automatic radii)
     FrameRadii firstRadii_;       // the first frame's radii
     FrameRadii radii_;            // this frame's (sppm: from the statistics of the frame before)
+    PathSplit split_;
     bool footprintsDirty_ = true;
     FrameParams params_{};
     FrameStats stats_;

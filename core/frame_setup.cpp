@@ -61,7 +61,7 @@ PhotonBudget planPhotons(const Scene& scene, const RenderSettings& settings) {
 
 FrameParams makeFrameParams(const Scene& scene, const CameraDesc& camera, const RenderSettings& settings,
                             const PhotonBudget& budget, std::uint32_t frameIndex, std::uint32_t accumulated,
-                            const FrameRadii& radii) {
+                            const FrameRadii& radii, const PathSplit& split) {
     FrameParams p{};
     p.camera = makeCamera(camera, settings.width, settings.height);
 
@@ -132,6 +132,10 @@ FrameParams makeFrameParams(const Scene& scene, const CameraDesc& camera, const 
     };
     p.batchesGlobal = batches(budget.globalPaths);
     p.batchesCaustic = batches(budget.splitCaustics ? budget.causticPaths : budget.globalPaths);
+    std::uint64_t total = budget.totalPaths();
+    std::uint64_t first = total * split.rank / split.ranks;
+    p.pathFirst = static_cast<std::uint32_t>(first);
+    p.pathCount = static_cast<std::uint32_t>(total * (split.rank + 1) / split.ranks - first);
     return p;
 }
 

@@ -31,12 +31,19 @@ PhotonBudget planPhotons(const Scene& scene, const RenderSettings& settings);
 
 struct FrameRadii;  // footprints.h
 
+// A frame's photon paths shared by `ranks` renderers (GPUs): rank r traces the r-th of `ranks`
+// consecutive index ranges. One renderer alone is rank 0 of 1.
+struct PathSplit {
+    std::uint32_t rank = 0;
+    std::uint32_t ranks = 1;
+};
+
 // Parameters of one frame. frameIndex numbers frames since the renderer started (it seeds the
 // random numbers); accumulated counts the frames already averaged (the progressive index);
 // radii are the frame's query radii (footprints.h: the first frame's; the progressive estimator
 // shrinks them here, sppm on the device).
 FrameParams makeFrameParams(const Scene& scene, const CameraDesc& camera, const RenderSettings& settings,
                             const PhotonBudget& budget, std::uint32_t frameIndex, std::uint32_t accumulated,
-                            const FrameRadii& radii);
+                            const FrameRadii& radii, const PathSplit& split = {});
 
 }  // namespace photon

@@ -134,10 +134,9 @@ private:
     }
 
     void tracePhotons() {
-        std::uint32_t paths = bindings_.params.globalPaths + bindings_.params.causticPaths;
-        parallelFor(paths, kPhotonChunk, [&](std::size_t first, std::size_t last) {
+        parallelFor(bindings_.params.pathCount, kPhotonChunk, [&](std::size_t first, std::size_t last) {
             for (std::size_t i = first; i < last; ++i) {
-                tracePhotonPath(bindings_, static_cast<std::uint32_t>(i));
+                traceSharedPhotonPath(bindings_, static_cast<std::uint32_t>(i));
             }
         });
     }

@@ -130,7 +130,7 @@ protected:
         const StageKernels& kernels = *kernels_;
         CUDA_CHECK(cudaEventRecord(events_[kStart], stream_), "tracePhotons");
         CUDA_CHECK(cudaMemsetAsync(b.counters, 0, COUNTER_COUNT * sizeof(std::uint32_t), stream_), "tracePhotons");
-        kernels.tracePhotons(b, params.globalPaths + params.causticPaths, config_, stream_);
+        kernels.tracePhotons(b, params.pathCount, config_, stream_);
         CUDA_CHECK(cudaEventRecord(events_[kPhotonsTraced], stream_), "tracePhotons");
 
         bool deterministic = (params.flags & FLAG_DETERMINISTIC) != 0u;

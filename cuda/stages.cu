@@ -28,7 +28,7 @@ constexpr int gatherMinBlocks(uint globalMode) { return globalMode == GLOBAL_DIR
 __global__ void __launch_bounds__(256, 4) tracePhotonsKernel(Bindings b, uint paths) {
     uint i = blockIdx.x * blockDim.x + threadIdx.x;
     if (i < paths) {
-        tracePhotonPath(b, i);
+        traceSharedPhotonPath(b, i);
     }
 }
 

@@ -24,6 +24,7 @@ layout(local_size_x = 64) in;
 void main() {
     uint i = gl_GlobalInvocationID.x;
     tracePhotonPath(i);
+    traceSharedPhotonPath(i);
     countPhotonCell(MAP_GLOBAL, i);
     scatterPhoton(MAP_GLOBAL, i);
     uvec2 key = photonSortKey(MAP_CAUSTIC, i);

@@ -1,5 +1,5 @@
 #version 460
-// Stage tracePhotons: one invocation per photon path of both passes.
+// Stage tracePhotons: one invocation per photon path of both passes (this renderer's share).
 #extension GL_GOOGLE_include_directive : require
 #include "shared/bindings.h"
 #include "shared/photon_trace.h"
@@ -8,8 +8,5 @@
 layout(local_size_x = GROUP_SIZE) in;
 
 void main() {
-    uint index = invocationIndex();
-    if (index < params.globalPaths + params.causticPaths) {
-        tracePhotonPath(index);
-    }
+    traceSharedPhotonPath(invocationIndex());
 }

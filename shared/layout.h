@@ -146,6 +146,9 @@ struct PH_ALIGN16 FrameParams {
     float alpha; uint batchesGlobal; uint batchesCaustic; uint pad1;
     // sppm: a pixel's first radius of each map (0: firstFootprints* of its footprint, sppm.h); α;
     // the photon passes each map's photons of this frame count as (sppm.h)
+    uint pathFirst; uint pathCount; uint pad2; uint pad3;
+    // the paths this renderer traces, [pathFirst, pathFirst + pathCount) of the frame's
+    // globalPaths + causticPaths: all of them, or one rank's share when several GPUs split a frame
 };
 
 // ---- Photon maps ------------------------------------------------------------------------------
@@ -208,13 +211,13 @@ PH_OFFSET(SceneInfo, background, 32);
 PH_SIZE(GridParams, 48); PH_OFFSET(GridParams, cellSize, 12); PH_OFFSET(GridParams, resolution, 16);
 PH_OFFSET(GridParams, cellOffset, 28); PH_OFFSET(GridParams, photonOffset, 32);
 PH_OFFSET(GridParams, radius, 40); PH_OFFSET(GridParams, keyBits, 44);
-PH_SIZE(FrameParams, 64 + 48 + 2 * 48 + 7 * 16); PH_OFFSET(FrameParams, scene, 64);
+PH_SIZE(FrameParams, 64 + 48 + 2 * 48 + 8 * 16); PH_OFFSET(FrameParams, scene, 64);
 PH_OFFSET(FrameParams, grids, 112); PH_OFFSET(FrameParams, width, 208);
 PH_OFFSET(FrameParams, globalPaths, 224); PH_OFFSET(FrameParams, estimator, 240);
 PH_OFFSET(FrameParams, gatherRays, 256); PH_OFFSET(FrameParams, photonIdBits, 272);
 PH_OFFSET(FrameParams, gatherBudget, 280);
 PH_OFFSET(FrameParams, firstRadiusGlobal, 288); PH_OFFSET(FrameParams, firstFootprintsCaustic, 300);
-PH_OFFSET(FrameParams, alpha, 304);
+PH_OFFSET(FrameParams, alpha, 304); PH_OFFSET(FrameParams, pathFirst, 320);
 PH_SIZE(SppmPixel, 64); PH_OFFSET(SppmPixel, countGlobal, 12); PH_OFFSET(SppmPixel, radiusGlobal, 28);
 PH_OFFSET(SppmPixel, fluxCaustic, 32); PH_OFFSET(SppmPixel, countCaustic, 48);
 PH_SIZE(Photon, 32); PH_OFFSET(Photon, incoming, 12); PH_OFFSET(Photon, power, 16); PH_OFFSET(Photon, id, 28);

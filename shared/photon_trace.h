@@ -136,7 +136,9 @@ PH_FN void appendPhoton(BUF_PARAM uint map, PH_IN(Photon) photon) {
     }
 }
 
-// Stage tracePhotons, for one path index in [0, globalPaths + causticPaths).
+// Stage tracePhotons, for one path index in [0, globalPaths + causticPaths). A path's random
+// numbers and photon ids come from its index alone, so renderers that split a frame's paths
+// between them (FrameParams.pathFirst, pathCount) trace, together, the photons one would.
 PH_FN void tracePhotonPath(BUF_PARAM uint index) {
     PhotonPath path = startPhotonPath(BUF_ARG index);
     while (photonPathAlive(path)) {
@@ -148,6 +150,13 @@ PH_FN void tracePhotonPath(BUF_PARAM uint index) {
         if ((store & STORE_CAUSTIC) != 0u) {
             appendPhoton(BUF_ARG MAP_CAUSTIC, photon);
         }
+    }
+}
+
+// The i-th path of this renderer's share of the frame.
+PH_FN void traceSharedPhotonPath(BUF_PARAM uint i) {
+    if (i < BUF(params).pathCount) {
+        tracePhotonPath(BUF_ARG BUF(params).pathFirst + i);
     }
 }
 

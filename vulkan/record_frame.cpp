@@ -35,7 +35,7 @@ void VulkanBackend::recordFrame(VkCommandBuffer cmd, const FrameParams& params) 
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layout, 0, 1, &p.set, 0, nullptr);
 
     // tracePhotons: one invocation per path of both passes.
-    dispatch(cmd, p, kTracePhotons, std::uint64_t(params.globalPaths) + params.causticPaths, GROUP_SIZE);
+    dispatch(cmd, p, kTracePhotons, params.pathCount, GROUP_SIZE);
     // The photons and their counters are written before the grid build reads them.
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
