@@ -5,7 +5,7 @@
 // summed over the frames; reading the image back for the comparison is not counted.
 //
 //   photon-render scenes/smallpt.json --backend cuda --estimator sppm --frames 4096 --photons 4000000 -o ref.pfm
-//   photon-converge scenes/smallpt.json --reference ref.pfm --backend cuda --estimators sppm,progressive,radius \
+//   photon-converge scenes/smallpt.json --reference ref.pfm --backend cuda --estimators sppm,progressive,radius
 //                   --photons 1000000 --frames 1024 --json smallpt-error.json
 //   photon-converge --compare image.pfm --reference ref.pfm     (one image: its error)
 #include <cstdio>
