@@ -179,8 +179,8 @@ struct PH_ALIGN16 SppmPixel {
 
 // What one frame's photons add to a pixel under sppm, for each map: the photons M found within the
 // pixel's radius and their reflected flux Φ. The gather writes it from this renderer's photons;
-// GPUs that split a frame's photons sum it (a collective, core/collective.h) before the accumulate
-// stage folds it into the pixel's SppmPixel, so it is the only per-pixel data that crosses GPUs.
+// GPUs that split a frame's photons would sum it before the accumulate stage folds it into the
+// pixel's SppmPixel: it is the only per-pixel data that has to cross GPUs.
 struct PH_ALIGN16 SppmFrame {
     vec3 fluxGlobal; float countGlobal;
     vec3 fluxCaustic; float countCaustic;

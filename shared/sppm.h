@@ -12,8 +12,8 @@
 // photons traced (as the total photon count to the power -(1 - α)/2), not with the frames, and a
 // caustic's focus sharpens at any photons per frame. The gather stage finds the frame's photons
 // (SppmFrame) and the accumulate stage applies the update, so that GPUs that split a frame's
-// photons sum what they found in between (core/collective.h). After k frames the pixel's radiance is the
-// mean direct light plus τ / (k π R²) for each map. Direct light stays with the shadow rays of the
+// photons can sum what they found in between. After k frames the pixel's radiance is the mean
+// direct light plus τ / (k π R²) for each map. Direct light stays with the shadow rays of the
 // eye pass.
 //
 // The first radius of a pixel is a number of pixel footprints at its visible point (the host picks
@@ -138,6 +138,18 @@ PH_FN SppmEstimate sppmEstimateOf(PH_IN(SppmPixel) state, uint map) {
     return e;
 }
 
+PH_FN void storeSppmEstimate(PH_INOUT(SppmPixel) state, uint map, PH_IN(SppmEstimate) e) {
+    if (map == MAP_GLOBAL) {
+        state.fluxGlobal = e.flux;
+        state.radiusGlobal = e.radius;
+        state.countGlobal = e.count;
+    } else {
+        state.fluxCaustic = e.flux;
+        state.radiusCaustic = e.radius;
+        state.countCaustic = e.count;
+    }
+}
+
 // The gather stage under sppm: this frame's photons at the pixel's visible point, into
 // sppmFrame (the accumulate stage folds them into the statistics). Returns this frame's own
 // estimate Φ / (πR²) of this renderer's photons (frameRadiance).
@@ -180,18 +192,13 @@ PH_FN SppmPixel sppmAccumulate(BUF_PARAM uint pixel) {
     if (hp.material != NONE) {
         SppmFrame f = BUF(sppmFrame)[pixel];
         float footprint = pixelFootprint(BUF(params).camera, BUF(params).height, hp.position);
-        SppmEstimate global = sppmEstimateOf(state, MAP_GLOBAL);
-        sppmUpdate(BUF_ARG MAP_GLOBAL, sppmQueryRadius(BUF_ARG MAP_GLOBAL, global, footprint), f.countGlobal,
-                   f.fluxGlobal, global);
-        state.fluxGlobal = global.flux;
-        state.radiusGlobal = global.radius;
-        state.countGlobal = global.count;
-        SppmEstimate caustic = sppmEstimateOf(state, MAP_CAUSTIC);
-        sppmUpdate(BUF_ARG MAP_CAUSTIC, sppmQueryRadius(BUF_ARG MAP_CAUSTIC, caustic, footprint), f.countCaustic,
-                   f.fluxCaustic, caustic);
-        state.fluxCaustic = caustic.flux;
-        state.radiusCaustic = caustic.radius;
-        state.countCaustic = caustic.count;
+        for (uint map = 0u; map < MAP_COUNT; ++map) {
+            SppmEstimate e = sppmEstimateOf(state, map);
+            float m = map == MAP_GLOBAL ? f.countGlobal : f.countCaustic;
+            vec3 phi = map == MAP_GLOBAL ? f.fluxGlobal : f.fluxCaustic;
+            sppmUpdate(BUF_ARG map, sppmQueryRadius(BUF_ARG map, e, footprint), m, phi, e);
+            storeSppmEstimate(state, map, e);
+        }
     }
     BUF(sppmPixels)[pixel] = state;
     return state;
