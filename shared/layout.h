@@ -177,15 +177,6 @@ struct PH_ALIGN16 SppmPixel {
     float countCaustic; uint pad0; uint pad1; uint pad2;
 };
 
-// What one frame's photons add to a pixel under sppm, for each map: the photons M found within the
-// pixel's radius and their reflected flux Φ. The gather writes it from this renderer's photons;
-// GPUs that split a frame's photons would sum it before the accumulate stage folds it into the
-// pixel's SppmPixel: it is the only per-pixel data that has to cross GPUs.
-struct PH_ALIGN16 SppmFrame {
-    vec3 fluxGlobal; float countGlobal;
-    vec3 fluxCaustic; float countCaustic;
-};
-
 PH_NAMESPACE_END
 
 #ifdef __cplusplus
@@ -229,8 +220,6 @@ PH_OFFSET(FrameParams, firstRadiusGlobal, 288); PH_OFFSET(FrameParams, firstFoot
 PH_OFFSET(FrameParams, alpha, 304); PH_OFFSET(FrameParams, pathFirst, 320);
 PH_SIZE(SppmPixel, 64); PH_OFFSET(SppmPixel, countGlobal, 12); PH_OFFSET(SppmPixel, radiusGlobal, 28);
 PH_OFFSET(SppmPixel, fluxCaustic, 32); PH_OFFSET(SppmPixel, countCaustic, 48);
-PH_SIZE(SppmFrame, 32); PH_OFFSET(SppmFrame, countGlobal, 12); PH_OFFSET(SppmFrame, fluxCaustic, 16);
-PH_OFFSET(SppmFrame, countCaustic, 28);
 PH_SIZE(Photon, 32); PH_OFFSET(Photon, incoming, 12); PH_OFFSET(Photon, power, 16); PH_OFFSET(Photon, id, 28);
 PH_SIZE(HitPoint, 64); PH_OFFSET(HitPoint, material, 12); PH_OFFSET(HitPoint, weight, 16);
 PH_OFFSET(HitPoint, normal, 28); PH_OFFSET(HitPoint, direct, 32); PH_OFFSET(HitPoint, outgoing, 44);

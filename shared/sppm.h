@@ -10,10 +10,8 @@
 // with a B-th of the frame's photons and of their flux, thinned to the shrinking disc under the
 // estimate's own assumption of a density that is even across the disc. Radii then shrink with the
 // photons traced (as the total photon count to the power -(1 - α)/2), not with the frames, and a
-// caustic's focus sharpens at any photons per frame. The gather stage finds the frame's photons
-// (SppmFrame) and the accumulate stage applies the update, so that GPUs that split a frame's
-// photons can sum what they found in between. After k frames the pixel's radiance is the mean
-// direct light plus τ / (k π R²) for each map. Direct light stays with the shadow rays of the
+// caustic's focus sharpens at any photons per frame. After k frames the pixel's radiance is the
+// mean direct light plus τ / (k π R²) for each map. Direct light stays with the shadow rays of the
 // eye pass.
 //
 // The first radius of a pixel is a number of pixel footprints at its visible point (the host picks
@@ -58,40 +56,30 @@ struct SppmEstimate {
     float count;
 };
 
-// The radius a pixel's query of `map` uses this frame: its statistics' radius, the first radius
-// when it has none yet, and for a pixel that has found no photon yet (its τ is 0) at most the
-// radius the cells follow: where a map has no light (most pixels, for the caustic map) queries
-// stay as cheap as the lit pixels' ones. The gather and the update both ask it, so that GPUs that
-// sum their photons between the two agree on it.
-PH_FN float sppmQueryRadius(BUF_PARAM uint map, PH_IN(SppmEstimate) e, float footprint) {
-    bool global = map == MAP_GLOBAL;
-    float r = e.radius;
-    if (r == 0.0f) {
+// This frame's photons of `map` at the visible point, folded into its statistics. Returns the
+// frame's own estimate Φ / (πR²) (for the single-frame image).
+PH_FN vec3 sppmUpdate(BUF_PARAM uint map, PH_IN(Shading) s, vec3 weight, float footprint, float u,
+                      PH_INOUT(SppmEstimate) e) {
+    GridParams grid = BUF(params).grids[map];
+    if (grid.photonCapacity == 0u) {
+        return vec3(0.0f);
+    }
+    if (e.radius == 0.0f) {
+        bool global = map == MAP_GLOBAL;
         float first = global ? BUF(params).firstRadiusGlobal : BUF(params).firstRadiusCaustic;
-        r = first > 0.0f ? first : footprint * (global ? BUF(params).firstFootprintsGlobal : BUF(params).firstFootprintsCaustic);
+        e.radius = first > 0.0f ? first : footprint * (global ? BUF(params).firstFootprintsGlobal : BUF(params).firstFootprintsCaustic);
     }
     if (e.count == 0.0f) {
-        r = min(r, BUF(params).grids[map].radius);
+        // A pixel that has found no photon yet (its τ is 0) is held to the radius the cells follow:
+        // where a map has no light (most pixels, for the caustic map) queries stay as cheap as
+        // the lit pixels' ones.
+        e.radius = min(e.radius, grid.radius);
     }
-    return r;
-}
-
-// This frame's photons M of `map` within the radius, and their flux Φ (in .xyz and .w).
-PH_FN vec4 sppmFramePhotons(BUF_PARAM uint map, PH_IN(Shading) s, vec3 weight, float r, float u) {
-    if (BUF(params).grids[map].photonCapacity == 0u) {
-        return vec4(0.0f);
-    }
-    vec4 q = radiusQuery(BUF_ARG BUF(params).grids[map], s, r, KERNEL_BOX, u, true);
-    return vec4(weight * vec3(q) * estimateScale(s), q.w);
-}
-
-// The frame's M photons and flux Φ of `map` (all renderers' together), folded into the pixel's
-// statistics as B photon passes (FrameParams.batches*).
-PH_FN void sppmUpdate(BUF_PARAM uint map, float r, float m, vec3 phi, PH_INOUT(SppmEstimate) e) {
-    if (BUF(params).grids[map].photonCapacity == 0u) {
-        return;
-    }
-    e.radius = r;
+    float r = e.radius;
+    vec4 q = radiusQuery(BUF_ARG grid, s, r, KERNEL_BOX, u, true);
+    vec3 phi = weight * vec3(q) * estimateScale(s);
+    float m = q.w;
+    vec3 frame = phi * (INV_PI / (r * r));
     if (m > 0.0f) {
         uint batches = max(map == MAP_GLOBAL ? BUF(params).batchesGlobal : BUF(params).batchesCaustic, 1u);
         float alpha = BUF(params).alpha;
@@ -118,90 +106,46 @@ PH_FN void sppmUpdate(BUF_PARAM uint map, float r, float m, vec3 phi, PH_INOUT(S
         int bin = clamp(int(bits >> 23u) - 127 + int(SPPM_RADIUS_BINS / 2u), 0, int(SPPM_RADIUS_BINS) - 1);
         PH_ATOMIC_ADD(BUF(counters)[COUNTER_SPPM_HISTOGRAM + map * SPPM_RADIUS_BINS + uint(bin)], 1u);
     }
+    return frame;
 }
 
-// The pixel's statistics before this frame.
-PH_FN SppmPixel sppmPixelBefore(BUF_PARAM uint pixel) {
+// The gather stage under sppm: updates the pixel's statistics and returns this frame's own
+// estimate (frameRadiance; the accumulate stage makes the image from the statistics).
+PH_FN vec3 gatherSppm(BUF_PARAM uint pixel) {
+    HitPoint hp = BUF(hitPoints)[pixel];
+    uint view = BUF(params).view;
     // (Not a ?: of a buffer element and a local: glslang gives the two struct types apart.)
     SppmPixel state = emptySppmPixel();
     if (BUF(params).accumulated > 0u) {
         state = BUF(sppmPixels)[pixel];
     }
-    return state;
-}
-
-PH_FN SppmEstimate sppmEstimateOf(PH_IN(SppmPixel) state, uint map) {
-    SppmEstimate e;
-    e.flux = map == MAP_GLOBAL ? state.fluxGlobal : state.fluxCaustic;
-    e.radius = map == MAP_GLOBAL ? state.radiusGlobal : state.radiusCaustic;
-    e.count = map == MAP_GLOBAL ? state.countGlobal : state.countCaustic;
-    return e;
-}
-
-PH_FN void storeSppmEstimate(PH_INOUT(SppmPixel) state, uint map, PH_IN(SppmEstimate) e) {
-    if (map == MAP_GLOBAL) {
-        state.fluxGlobal = e.flux;
-        state.radiusGlobal = e.radius;
-        state.countGlobal = e.count;
-    } else {
-        state.fluxCaustic = e.flux;
-        state.radiusCaustic = e.radius;
-        state.countCaustic = e.count;
-    }
-}
-
-// The gather stage under sppm: this frame's photons at the pixel's visible point, into
-// sppmFrame (the accumulate stage folds them into the statistics). Returns this frame's own
-// estimate Φ / (πR²) of this renderer's photons (frameRadiance).
-PH_FN vec3 gatherSppm(BUF_PARAM uint pixel) {
-    HitPoint hp = BUF(hitPoints)[pixel];
-    uint view = BUF(params).view;
+    state.direct += (hp.direct - state.direct) / float(BUF(params).accumulated + 1u);
     vec3 frame = viewShowsDirect(view) ? hp.direct : vec3(0.0f);
-    vec4 found[MAP_COUNT];
-    found[MAP_GLOBAL] = vec4(0.0f);
-    found[MAP_CAUSTIC] = vec4(0.0f);
     if (hp.material != NONE) {
-        SppmPixel state = sppmPixelBefore(BUF_ARG pixel);
         Shading s = hitPointShading(BUF_ARG hp);
         Rng rng = rngCreate(pixel, BUF(params).frameIndex, BUF(params).seed, STREAM_GATHER);
         float u = rngNext(rng);
         float footprint = pixelFootprint(BUF(params).camera, BUF(params).height, hp.position);
-        for (uint map = 0u; map < MAP_COUNT; ++map) {
-            float r = sppmQueryRadius(BUF_ARG map, sppmEstimateOf(state, map), footprint);
-            found[map] = sppmFramePhotons(BUF_ARG map, s, hp.weight, r, u);
-            if (viewShowsMap(view, map) && r > 0.0f) {
-                frame += vec3(found[map]) * (INV_PI / (r * r));
-            }
-        }
-    }
-    SppmFrame f;
-    f.fluxGlobal = vec3(found[MAP_GLOBAL]);
-    f.countGlobal = found[MAP_GLOBAL].w;
-    f.fluxCaustic = vec3(found[MAP_CAUSTIC]);
-    f.countCaustic = found[MAP_CAUSTIC].w;
-    BUF(sppmFrame)[pixel] = f;
-    return frame;
-}
-
-// The update of a pixel's statistics from the frame's photons (sppmFrame), in the accumulate
-// stage.
-PH_FN SppmPixel sppmAccumulate(BUF_PARAM uint pixel) {
-    HitPoint hp = BUF(hitPoints)[pixel];
-    SppmPixel state = sppmPixelBefore(BUF_ARG pixel);
-    state.direct += (hp.direct - state.direct) / float(BUF(params).accumulated + 1u);
-    if (hp.material != NONE) {
-        SppmFrame f = BUF(sppmFrame)[pixel];
-        float footprint = pixelFootprint(BUF(params).camera, BUF(params).height, hp.position);
-        for (uint map = 0u; map < MAP_COUNT; ++map) {
-            SppmEstimate e = sppmEstimateOf(state, map);
-            float m = map == MAP_GLOBAL ? f.countGlobal : f.countCaustic;
-            vec3 phi = map == MAP_GLOBAL ? f.fluxGlobal : f.fluxCaustic;
-            sppmUpdate(BUF_ARG map, sppmQueryRadius(BUF_ARG map, e, footprint), m, phi, e);
-            storeSppmEstimate(state, map, e);
-        }
+        SppmEstimate global;
+        global.flux = state.fluxGlobal;
+        global.radius = state.radiusGlobal;
+        global.count = state.countGlobal;
+        vec3 g = sppmUpdate(BUF_ARG MAP_GLOBAL, s, hp.weight, footprint, u, global);
+        state.fluxGlobal = global.flux;
+        state.radiusGlobal = global.radius;
+        state.countGlobal = global.count;
+        SppmEstimate caustic;
+        caustic.flux = state.fluxCaustic;
+        caustic.radius = state.radiusCaustic;
+        caustic.count = state.countCaustic;
+        vec3 c = sppmUpdate(BUF_ARG MAP_CAUSTIC, s, hp.weight, footprint, u, caustic);
+        state.fluxCaustic = caustic.flux;
+        state.radiusCaustic = caustic.radius;
+        state.countCaustic = caustic.count;
+        frame += (viewShowsMap(view, MAP_GLOBAL) ? g : vec3(0.0f)) + (viewShowsMap(view, MAP_CAUSTIC) ? c : vec3(0.0f));
     }
     BUF(sppmPixels)[pixel] = state;
-    return state;
+    return frame;
 }
 
 // The pixel's image after `frames` frames.
@@ -222,7 +166,7 @@ PH_FN vec3 sppmRadiance(PH_IN(SppmPixel) state, uint frames, uint view) {
 PH_FN vec4 accumulatePixel(BUF_PARAM uint pixel) {
     uint n = BUF(params).accumulated;
     if (BUF(params).estimator == ESTIMATOR_SPPM && BUF(params).view != VIEW_GRID) {
-        return vec4(sppmRadiance(sppmAccumulate(BUF_ARG pixel), n + 1u, BUF(params).view), 1.0f);
+        return vec4(sppmRadiance(BUF(sppmPixels)[pixel], n + 1u, BUF(params).view), 1.0f);
     }
     return accumulateMean(BUF(accumulation)[pixel], BUF(frameRadiance)[pixel], n);
 }

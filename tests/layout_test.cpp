@@ -69,8 +69,7 @@ const Member kMembers[] = {
     PH_MEMBER(HitPoint, albedo), PH_MEMBER(HitPoint, geometricNormal),
     PH_MEMBER(SppmPixel, direct), PH_MEMBER(SppmPixel, countGlobal), PH_MEMBER(SppmPixel, fluxGlobal),
     PH_MEMBER(SppmPixel, radiusGlobal), PH_MEMBER(SppmPixel, fluxCaustic), PH_MEMBER(SppmPixel, radiusCaustic),
-    PH_MEMBER(SppmPixel, countCaustic), PH_MEMBER(SppmFrame, fluxGlobal), PH_MEMBER(SppmFrame, countGlobal),
-    PH_MEMBER(SppmFrame, fluxCaustic), PH_MEMBER(SppmFrame, countCaustic),
+    PH_MEMBER(SppmPixel, countCaustic),
 };
 
 
