@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <utility>
 
 #include "parallel.h"
@@ -34,56 +35,55 @@ void grow(glm::vec3& lo, glm::vec3& hi, glm::vec3 p, float r) {
     hi = glm::max(hi, p + glm::vec3(r));
 }
 
+// A material of `type` with nothing set: no texture (texture 0 is a real texture), index of
+// refraction 1.
+Material blankMaterial(std::uint32_t type) {
+    Material m{};
+    m.type = type;
+    m.albedoTexture = NONE;
+    m.ior = 1.0f;
+    return m;
+}
+
 }  // namespace
 
 Material makeDiffuse(glm::vec3 albedo) {
-    Material m{};
-    m.type = MATERIAL_DIFFUSE;
+    Material m = blankMaterial(MATERIAL_DIFFUSE);
     m.albedo = albedo;
-    m.ior = 1.0f;
     return m;
 }
 
 Material makeMirror(glm::vec3 reflectance) {
-    Material m{};
-    m.type = MATERIAL_MIRROR;
+    Material m = blankMaterial(MATERIAL_MIRROR);
     m.specular = reflectance;
-    m.ior = 1.0f;
     return m;
 }
 
 Material makeGlass(float ior, glm::vec3 tint) {
-    Material m{};
-    m.type = MATERIAL_GLASS;
+    Material m = blankMaterial(MATERIAL_GLASS);
     m.specular = tint;
     m.ior = ior;
     return m;
 }
 
 Material makeGlossy(glm::vec3 albedo, glm::vec3 specular, float roughness) {
-    Material m{};
-    m.type = MATERIAL_GLOSSY;
+    Material m = blankMaterial(MATERIAL_GLOSSY);
     m.albedo = albedo;
     m.specular = specular;
     m.roughness = roughness;
-    m.ior = 1.0f;
     return m;
 }
 
 Material makeReflective(glm::vec3 albedo, glm::vec3 reflectance) {
-    Material m{};
-    m.type = MATERIAL_REFLECTIVE;
+    Material m = blankMaterial(MATERIAL_REFLECTIVE);
     m.albedo = albedo;
     m.specular = reflectance;
-    m.ior = 1.0f;
     return m;
 }
 
 Material makeEmitter(glm::vec3 radiance) {
-    Material m{};
-    m.type = MATERIAL_EMITTER;
+    Material m = blankMaterial(MATERIAL_EMITTER);
     m.emission = radiance;
-    m.ior = 1.0f;
     return m;
 }
 
@@ -365,6 +365,13 @@ void mergeTargets(std::vector<CausticTarget>& targets, std::size_t limit) {
 }
 
 void Scene::finalize() {
+    // Every texture a material names exists: the shared code samples it unchecked.
+    for (std::size_t i = 0; i < materials.size(); ++i) {
+        if (materials[i].albedoTexture != NONE && materials[i].albedoTexture >= textures.size()) {
+            throw std::logic_error("material " + materialNames[i] + " names texture " +
+                                   std::to_string(materials[i].albedoTexture) + " of " + std::to_string(textures.size()));
+        }
+    }
     // Bounds of everything finite (lights' own positions included).
     glm::vec3 lo(FLOAT_MAX);
     glm::vec3 hi(-FLOAT_MAX);

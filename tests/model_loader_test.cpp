@@ -148,6 +148,23 @@ void expectNear(glm::vec3 a, glm::vec3 b, float tolerance = 1e-5f) {
 
 // ---- OBJ ------------------------------------------------------------------------------------------
 
+// Texture 0 is a real texture: a material without one must say NONE, or every triangle with
+// texture coordinates samples another material's image (or, with no textures at all, memory
+// that is not there).
+TEST(ObjLoader, TextureCoordinatesWithoutAnImageSampleNothing) {
+    Scene scene;
+    load(scene, "uv.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1\n");
+    ASSERT_FALSE(scene.materials.empty());
+    for (const Material& m : scene.materials) {
+        EXPECT_EQ(m.albedoTexture, NONE);
+    }
+    for (Material m : {makeDiffuse(glm::vec3(1.0f)), makeMirror(glm::vec3(1.0f)), makeGlass(1.5f, glm::vec3(1.0f)),
+                       makeGlossy(glm::vec3(0.5f), glm::vec3(0.5f), 0.1f), makeReflective(glm::vec3(0.5f), glm::vec3(0.5f)),
+                       makeEmitter(glm::vec3(1.0f))}) {
+        EXPECT_EQ(m.albedoTexture, NONE);
+    }
+}
+
 TEST(ObjLoader, PolygonsAreTriangulatedUnderTheTransform) {
     Scene scene;
     ModelOptions options;
