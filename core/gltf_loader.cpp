@@ -1,8 +1,10 @@
 // glTF 2.0, .gltf (external or data-URI buffers) and .glb (tinygltf): the default scene's node
 // hierarchy with its transforms, indexed triangles (lists, strips, fans), normals, texture
-// coordinates, base-colour textures, cameras and KHR_lights_punctual. tinygltf parses the JSON and
+// coordinates, the metallic-roughness material with its textures and extensions, cameras and
+// KHR_lights_punctual. tinygltf parses the JSON and
 // gathers the buffers and images; every accessor, index and node is checked here.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <set>
@@ -17,6 +19,7 @@
 
 #include "error.h"
 #include "model_loader.h"
+#include "shared/math.h"
 #include "texture_loader.h"
 
 namespace photon {
@@ -25,7 +28,8 @@ namespace {
 constexpr double kWattsPerLumen = 1.0 / 683.0;  // glTF's photometric units taken at 555 nm
 
 const char* const kSupportedRequired[] = {"KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior",
-                                          "KHR_materials_emissive_strength"};
+                                          "KHR_materials_emissive_strength", "KHR_materials_volume",
+                                          "KHR_texture_transform"};
 
 struct Loader {
     Scene& scene;
@@ -34,7 +38,8 @@ struct Loader {
     const FileReader& read;
     tinygltf::Model model;
     std::vector<std::uint32_t> materials;  // scene material of each glTF material, NONE until used
-    std::vector<std::uint32_t> textures;   // scene texture of each glTF texture, NONE until used
+    std::vector<std::array<std::uint32_t, 2>> textures;  // scene texture of each glTF texture (sRGB,
+                                                         // linear), NONE until used
     std::uint32_t defaultMaterial = NONE;
     ModelExtras extras;
 
@@ -177,12 +182,14 @@ struct Loader {
 
     static double clamp01(double x) { return std::isfinite(x) ? std::clamp(x, 0.0, 1.0) : 0.0; }
 
-    std::uint32_t texture(int index, const std::string& where) {
+    // The scene texture of glTF texture `index` in an encoding, decoded once for each.
+    std::uint32_t texture(int index, const std::string& where, TextureEncoding encoding) {
         if (index < 0 || std::size_t(index) >= model.textures.size()) {
             fail(where, "texture " + std::to_string(index) + " does not exist");
         }
-        if (textures[std::size_t(index)] != NONE) {
-            return textures[std::size_t(index)];
+        std::uint32_t& cached = textures[std::size_t(index)][encoding == TextureEncoding::Srgb ? 0 : 1];
+        if (cached != NONE) {
+            return cached;
         }
         const tinygltf::Texture& t = model.textures[std::size_t(index)];
         std::string here = at("textures", std::size_t(index));
@@ -209,18 +216,63 @@ struct Loader {
             // tinygltf keeps going past an external image it could not read: read it again for the reason.
             bytes = read(folderOf(path) + image.uri, "image");
         }
-        textures[std::size_t(index)] = addImageTexture(scene, bytes, wrapS, wrapT, path + ": " + at("images", std::size_t(t.source)));
-        return textures[std::size_t(index)];
+        cached = addImageTexture(scene, bytes, wrapS, wrapT, path + ": " + at("images", std::size_t(t.source)), encoding);
+        return cached;
     }
 
-    // glTF's metallic-roughness material as Photon's (the table of docs/scenes.md).
+    // A material's use of a texture: the texture seen through the textureInfo's
+    // KHR_texture_transform (offset, rotation, scale), if it has one. Texture coordinate sets
+    // other than TEXCOORD_0 are not read: the texture is left out, as docs/scenes.md says.
+    std::uint32_t textureInfo(int index, int texCoord, const tinygltf::ExtensionMap& extensions, const std::string& where,
+                              TextureEncoding encoding) {
+        auto it = extensions.find("KHR_texture_transform");
+        if (it != extensions.end() && it->second.IsObject() && it->second.Has("texCoord") &&
+            it->second.Get("texCoord").IsInt()) {
+            texCoord = it->second.Get("texCoord").Get<int>();
+        }
+        if (index < 0 || texCoord != 0) {
+            return NONE;
+        }
+        std::uint32_t t = texture(index, where, encoding);
+        if (it == extensions.end()) {
+            return t;
+        }
+        const tinygltf::Value& x = it->second;
+        auto pair = [&](const char* key, double fallback, int c) {
+            if (x.IsObject() && x.Has(key) && x.Get(key).IsArray() && x.Get(key).ArrayLen() == 2 &&
+                x.Get(key).Get(c).IsNumber()) {
+                return x.Get(key).Get(c).GetNumberAsDouble();
+            }
+            return fallback;
+        };
+        double rotation = number(x, "rotation", 0.0);
+        double ox = pair("offset", 0.0, 0);
+        double oy = pair("offset", 0.0, 1);
+        double sx = pair("scale", 1.0, 0);
+        double sy = pair("scale", 1.0, 1);
+        for (double v : {rotation, ox, oy, sx, sy}) {
+            if (!std::isfinite(v) || std::abs(v) > 1e6) {
+                fail(where + "/extensions/KHR_texture_transform", "offset, rotation and scale must be finite");
+            }
+        }
+        // (s', t') = T · R · S · (s, t) with R = [cos r, sin r; −sin r, cos r] (the extension's).
+        double c = std::cos(rotation);
+        double sn = std::sin(rotation);
+        glm::vec3 rowS(float(c * sx), float(sn * sy), float(ox));
+        glm::vec3 rowT(float(-sn * sx), float(c * sy), float(oy));
+        return scene.addTextureView(t, rowS, rowT);
+    }
+
+    // glTF's metallic-roughness material with its extensions as Photon's MATERIAL_PBR
+    // (shared/pbr.h; the table of docs/scenes.md).
     std::uint32_t material(int index, const std::string& where) {
         if (options.material != NONE) {
             return options.material;
         }
         if (index < 0) {
             if (defaultMaterial == NONE) {
-                defaultMaterial = scene.addMaterial(path + "#default", makeDiffuse(glm::vec3(0.8f)));
+                // The glTF default: white, fully metallic and rough (the specification's values).
+                defaultMaterial = scene.addMaterial(path + "#default", makePbr(glm::vec3(1.0f), 1.0f, 1.0f));
             }
             return defaultMaterial;
         }
@@ -233,43 +285,69 @@ struct Loader {
         const tinygltf::Material& g = model.materials[std::size_t(index)];
         std::string here = at("materials", std::size_t(index));
         const tinygltf::PbrMetallicRoughness& pbr = g.pbrMetallicRoughness;
-        glm::vec3 base(1.0f);
-        for (int c = 0; c < 3 && std::size_t(c) < pbr.baseColorFactor.size(); ++c) {
+        glm::vec4 base(1.0f);
+        for (int c = 0; c < 4 && std::size_t(c) < pbr.baseColorFactor.size(); ++c) {
             base[c] = float(clamp01(pbr.baseColorFactor[std::size_t(c)]));
         }
-        double metallic = clamp01(pbr.metallicFactor);
-        double roughness = clamp01(pbr.roughnessFactor);
+        Material m = makePbr(glm::vec3(base), float(clamp01(pbr.metallicFactor)), float(clamp01(pbr.roughnessFactor)));
+        m.alpha = base.w;
         auto extension = [&](const char* name) {
             auto it = g.extensions.find(name);
             return it == g.extensions.end() ? tinygltf::Value() : it->second;
         };
-        double transmission = clamp01(number(extension("KHR_materials_transmission"), "transmissionFactor", 0.0));
+        m.transmission = float(clamp01(number(extension("KHR_materials_transmission"), "transmissionFactor", 0.0)));
         double ior = number(extension("KHR_materials_ior"), "ior", 1.5);
-        double strength = number(extension("KHR_materials_emissive_strength"), "emissiveStrength", 1.0);
-        Material m;
-        bool textured = false;
-        if (transmission >= 0.5) {
-            m = makeGlass(std::isfinite(ior) && ior > 1.0 && ior < 10.0 ? float(ior) : 1.5f, base);
-        } else if (metallic >= 0.5 && roughness < 0.1) {
-            m = makeMirror(base);
-        } else if (metallic >= 0.5) {
-            m = makeGlossy(glm::vec3(0.0f), base, std::max(0.001f, float(roughness * roughness)));
-        } else if (roughness < 0.6) {
-            m = makeGlossy(base * 0.96f, glm::vec3(0.04f), std::max(0.001f, float(roughness * roughness)));
-            textured = true;
-        } else {
-            m = makeDiffuse(base);
-            textured = true;
+        if (!(ior >= 1.0 && ior <= 10.0)) {
+            fail(here + "/extensions/KHR_materials_ior/ior", "must be from 1 to 10");
         }
-        if (textured && pbr.baseColorTexture.index >= 0 && pbr.baseColorTexture.texCoord == 0) {
-            m.albedoTexture = texture(pbr.baseColorTexture.index, here + "/pbrMetallicRoughness/baseColorTexture");
+        m.ior = float(ior);
+        // KHR_materials_volume: a body of glass (refracting, absorbing) rather than a thin sheet.
+        tinygltf::Value volume = extension("KHR_materials_volume");
+        if (!(number(volume, "thicknessFactor", 0.0) > 0.0)) {
+            m.flags |= MATERIAL_FLAG_THIN_WALLED;
         }
+        double distance = number(volume, "attenuationDistance", HUGE_VAL);
+        if (!(distance > 0.0)) {
+            fail(here + "/extensions/KHR_materials_volume/attenuationDistance", "must be positive");
+        }
+        if (std::isfinite(distance) && volume.IsObject() && volume.Has("attenuationColor") &&
+            volume.Get("attenuationColor").IsArray() && volume.Get("attenuationColor").ArrayLen() == 3) {
+            for (int c = 0; c < 3; ++c) {
+                const tinygltf::Value& v = volume.Get("attenuationColor").Get(c);
+                double colour = v.IsNumber() ? std::clamp(v.GetNumberAsDouble(), 1e-6, 1.0) : 1.0;
+                m.attenuation[c] = float(-std::log(colour) / distance);  // Beer–Lambert: σ = −ln(c)/d
+            }
+        }
+        if (g.alphaMode == "MASK") {
+            m.flags |= MATERIAL_FLAG_ALPHA_MASK;
+            m.alphaCutoff = float(std::isfinite(g.alphaCutoff) ? std::max(g.alphaCutoff, 0.0) : 0.5);
+        } else if (g.alphaMode == "BLEND") {
+            m.flags |= MATERIAL_FLAG_ALPHA_BLEND;
+        } else if (g.alphaMode != "OPAQUE" && !g.alphaMode.empty()) {
+            fail(here + "/alphaMode", "unknown alphaMode '" + g.alphaMode.substr(0, 40) + "'");
+        }
+        m.albedoTexture = textureInfo(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
+                                      pbr.baseColorTexture.extensions, here + "/pbrMetallicRoughness/baseColorTexture",
+                                      TextureEncoding::Srgb);
+        m.metallicRoughnessTexture =
+            textureInfo(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+                        pbr.metallicRoughnessTexture.extensions, here + "/pbrMetallicRoughness/metallicRoughnessTexture",
+                        TextureEncoding::Linear);
+        m.normalTexture = textureInfo(g.normalTexture.index, g.normalTexture.texCoord, g.normalTexture.extensions,
+                                      here + "/normalTexture", TextureEncoding::Linear);
+        m.normalScale = std::isfinite(g.normalTexture.scale) ? float(std::clamp(g.normalTexture.scale, -100.0, 100.0)) : 1.0f;
         glm::vec3 emission(0.0f);
         for (int c = 0; c < 3 && std::size_t(c) < g.emissiveFactor.size(); ++c) {
             emission[c] = float(clamp01(g.emissiveFactor[std::size_t(c)]));
         }
-        if (std::isfinite(strength) && strength > 0.0 && strength < 1e6) {
-            m.emission = emission * float(strength);
+        double strength = number(extension("KHR_materials_emissive_strength"), "emissiveStrength", 1.0);
+        if (!(strength >= 0.0 && strength < 1e6)) {
+            fail(here + "/extensions/KHR_materials_emissive_strength/emissiveStrength", "must be from 0 to 1e6");
+        }
+        m.emission = emission * float(strength);
+        if (!isBlack(m.emission)) {
+            m.emissionTexture = textureInfo(g.emissiveTexture.index, g.emissiveTexture.texCoord, g.emissiveTexture.extensions,
+                                            here + "/emissiveTexture", TextureEncoding::Srgb);
         }
         std::string name = g.name.empty() ? std::to_string(index) : g.name;
         materials[std::size_t(index)] = scene.addMaterial(path + "#" + name, m);
@@ -559,7 +637,7 @@ ModelExtras addGltfModel(Scene& scene, const std::string& path, const std::strin
         }
     }
     loader.materials.assign(loader.model.materials.size(), NONE);
-    loader.textures.assign(loader.model.textures.size(), NONE);
+    loader.textures.assign(loader.model.textures.size(), {NONE, NONE});
     loader.nodes();
     return loader.extras;
 }

@@ -11,6 +11,7 @@
 
 #include "error.h"
 #include "model_loader.h"
+#include "shared/math.h"
 #include "texture_loader.h"
 
 namespace photon {
@@ -127,6 +128,11 @@ glm::vec3 clampedColour(const tinyobj::real_t* c) {
 
 bool anyPositive(glm::vec3 c) { return c.x > 0.0f || c.y > 0.0f || c.z > 0.0f; }
 
+// Whether an MTL material uses the PBR extension's keys (Pr roughness, Pm metallic, or their maps).
+bool usesPbrKeys(const tinyobj::material_t& m) {
+    return m.roughness > 0.0f || m.metallic > 0.0f || !m.roughness_texname.empty() || !m.metallic_texname.empty();
+}
+
 // An MTL material as Photon's (the table of docs/scenes.md).
 Material fromMtl(const tinyobj::material_t& m) {
     glm::vec3 kd = clampedColour(m.diffuse);
@@ -139,7 +145,19 @@ Material fromMtl(const tinyobj::material_t& m) {
     Material out;
     bool transparent = m.illum == 4 || m.illum == 6 || m.illum == 7 || m.illum == 9 || m.dissolve < 0.999f;
     bool mirrored = m.illum == 3 || m.illum == 5;
-    if (transparent) {
+    if (usesPbrKeys(m)) {
+        // The PBR extension of MTL (Pr, Pm; Blender and exporters of glTF-like materials): glTF's model.
+        float roughness = std::isfinite(m.roughness) ? std::clamp(float(m.roughness), 0.0f, 1.0f) : 1.0f;
+        float metallic = std::isfinite(m.metallic) ? std::clamp(float(m.metallic), 0.0f, 1.0f) : 0.0f;
+        out = makePbr(kd, metallic, roughness);
+        if (m.ior >= 1.0f && m.ior <= 10.0f) {
+            out.ior = float(m.ior);
+        }
+        if (transparent) {
+            // d < 1 is the share that passes; the transparent illumination models alone mean glass.
+            out.transmission = m.dissolve < 0.999f ? 1.0f - std::clamp(float(m.dissolve), 0.0f, 1.0f) : 1.0f;
+        }
+    } else if (transparent) {
         glm::vec3 tf = clampedColour(m.transmittance);
         float ior = m.ior > 1.0f && m.ior < 10.0f ? float(m.ior) : 1.5f;
         out = makeGlass(ior, anyPositive(tf) ? tf : glm::vec3(1.0f));
@@ -185,12 +203,31 @@ ModelExtras addObjModel(Scene& scene, const std::string& path, const std::string
     if (options.material == NONE) {
         for (std::size_t i = 0; i < materials.size(); ++i) {
             Material m = fromMtl(materials[i]);
+            std::string folder = folderOf(mtl.files.empty() ? path : mtl.files.front());
+            auto image = [&](const std::string& name, TextureEncoding encoding) {
+                std::string file = folder + name;
+                return addImageTexture(scene, read(file, "texture"), WRAP_REPEAT, WRAP_REPEAT, file, encoding);
+            };
             if (!materials[i].diffuse_texname.empty() && (m.type == MATERIAL_DIFFUSE || m.type == MATERIAL_GLOSSY ||
-                                                          m.type == MATERIAL_REFLECTIVE)) {
-                std::string image = folderOf(mtl.files.empty() ? path : mtl.files.front()) + materials[i].diffuse_texname;
-                m.albedoTexture = addImageTexture(scene, read(image, "texture"), WRAP_REPEAT, WRAP_REPEAT, image);
+                                                          m.type == MATERIAL_REFLECTIVE || m.type == MATERIAL_PBR)) {
+                m.albedoTexture = image(materials[i].diffuse_texname, TextureEncoding::Srgb);
                 if (!anyPositive(m.albedo)) {
                     m.albedo = glm::vec3(1.0f);  // map_Kd alone: the texture is the colour
+                }
+            }
+            if (m.type == MATERIAL_PBR) {
+                // Normal maps: "norm", or "map_Bump" as PBR exporters write them (in older MTL files
+                // without PBR keys map_Bump is a height map, which Photon does not read).
+                const std::string& normals =
+                    materials[i].normal_texname.empty() ? materials[i].bump_texname : materials[i].normal_texname;
+                if (!normals.empty()) {
+                    m.normalTexture = image(normals, TextureEncoding::Linear);
+                    float scale = materials[i].normal_texname.empty() ? materials[i].bump_texopt.bump_multiplier
+                                                                      : materials[i].normal_texopt.bump_multiplier;
+                    m.normalScale = std::isfinite(scale) && scale != 0.0f ? std::clamp(scale, -100.0f, 100.0f) : 1.0f;
+                }
+                if (!materials[i].emissive_texname.empty() && !isBlack(m.emission)) {
+                    m.emissionTexture = image(materials[i].emissive_texname, TextureEncoding::Srgb);
                 }
             }
             sceneMaterial[i] = scene.addMaterial(path + "#" + materials[i].name, m);

@@ -41,11 +41,50 @@ Material blankMaterial(std::uint32_t type) {
     Material m{};
     m.type = type;
     m.albedoTexture = NONE;
+    m.metallicRoughnessTexture = NONE;
+    m.normalTexture = NONE;
+    m.emissionTexture = NONE;
     m.ior = 1.0f;
+    m.alpha = 1.0f;
+    m.alphaCutoff = 0.5f;
+    m.normalScale = 1.0f;
     return m;
 }
 
+// The unit tangent ∂p/∂s of triangle (p0, p1, p2) with texture coordinates (c0, c1, c2), and
+// whether the bitangent n × t points against −∂p/∂t (a mirrored mapping; t runs down the image, so
+// n × t points up it). False where the coordinates are degenerate.
+bool triangleTangent(glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, glm::vec2 c0, glm::vec2 c1, glm::vec2 c2,
+                     glm::vec3& tangent, bool& flipped) {
+    glm::vec3 e1 = p1 - p0;
+    glm::vec3 e2 = p2 - p0;
+    glm::vec2 d1 = c1 - c0;
+    glm::vec2 d2 = c2 - c0;
+    float det = d1.x * d2.y - d2.x * d1.y;
+    if (!(std::abs(det) > 1e-20f)) {
+        return false;
+    }
+    glm::vec3 dpds = (e1 * d2.y - e2 * d1.y) / det;
+    glm::vec3 dpdt = (e2 * d1.x - e1 * d2.x) / det;
+    float length = glm::length(dpds);
+    if (!(length > 0.0f) || !std::isfinite(length)) {
+        return false;
+    }
+    tangent = dpds / length;
+    flipped = glm::dot(glm::cross(glm::cross(e1, e2), tangent), -dpdt) < 0.0f;
+    return true;
+}
+
 }  // namespace
+
+Material makePbr(glm::vec3 baseColor, float metallic, float roughness) {
+    Material m = blankMaterial(MATERIAL_PBR);
+    m.albedo = baseColor;
+    m.metallic = metallic;
+    m.roughness = roughness * roughness;
+    m.ior = 1.5f;
+    return m;
+}
 
 Material makeDiffuse(glm::vec3 albedo) {
     Material m = blankMaterial(MATERIAL_DIFFUSE);
@@ -133,6 +172,7 @@ void Scene::addTriangle(glm::vec3 a, glm::vec3 b, glm::vec3 c, std::uint32_t mat
     t.v2 = c;
     t.material = material;
     t.attributes = NONE;
+    t.flags = 0u;
     objects.push_back({std::uint32_t(triangles.size()), 1});
     triangles.push_back(t);
 }
@@ -150,6 +190,7 @@ void Scene::addMesh(const Mesh& mesh, const glm::mat4& transform) {
     bool mirrors = glm::determinant(glm::mat3(transform)) < 0.0f;
     bool hasNormals = mesh.normals.size() == mesh.positions.size() && !mesh.normals.empty();
     bool hasTexcoords = mesh.texcoords.size() == mesh.positions.size() && !mesh.texcoords.empty();
+    bool hasTangents = hasTexcoords && mesh.tangents.size() == mesh.positions.size();
     bool attributed = hasNormals || hasTexcoords;
     // Vertices into the scene's space, normals by the inverse transpose.
     std::vector<glm::vec3> world(mesh.positions.size());
@@ -212,7 +253,7 @@ void Scene::addMesh(const Mesh& mesh, const glm::mat4& transform) {
                 t.v2 = world[v.z];
                 t.material = mesh.materials[f];
                 t.attributes = NONE;
-                t.pad0 = 0.0f;
+                t.flags = 0u;
                 if (attributed) {
                     TriangleAttributes attributes{};
                     if (hasNormals && usableNormal[v.x] && usableNormal[v.y] && usableNormal[v.z]) {
@@ -229,6 +270,23 @@ void Scene::addMesh(const Mesh& mesh, const glm::mat4& transform) {
                         attributes.s2 = mesh.texcoords[v.z].x;
                         attributes.t2 = mesh.texcoords[v.z].y;
                         attributes.flags |= ATTRIBUTE_TEXCOORDS;
+                        glm::vec3 tangent;
+                        bool flipped = false;
+                        if (hasTangents) {
+                            // The file's (MikkTSpace) tangents, as a direction: by the transform itself.
+                            glm::vec4 sum = mesh.tangents[v.x] + mesh.tangents[v.y] + mesh.tangents[v.z];
+                            tangent = glm::mat3(transform) * glm::vec3(sum);
+                            flipped = (sum.w < 0.0f) != mirrors;
+                        }
+                        bool usable = hasTangents && std::isfinite(glm::length(tangent)) && glm::length(tangent) > 0.0f;
+                        if (!usable) {
+                            usable = triangleTangent(t.v0, t.v1, t.v2, mesh.texcoords[v.x], mesh.texcoords[v.y],
+                                                     mesh.texcoords[v.z], tangent, flipped);
+                        }
+                        if (usable) {
+                            attributes.tangent = octEncode(glm::normalize(tangent));
+                            attributes.flags |= ATTRIBUTE_TANGENT | (flipped ? ATTRIBUTE_FLIPPED_BITANGENT : 0u);
+                        }
                     }
                     t.attributes = std::uint32_t(firstAttributes + out);
                     triangleAttributes[firstAttributes + out] = attributes;
@@ -243,6 +301,14 @@ void Scene::addMesh(const Mesh& mesh, const glm::mat4& transform) {
     }
 }
 
+std::uint32_t Scene::addTextureView(std::uint32_t texture, glm::vec3 transformS, glm::vec3 transformT) {
+    Texture t = textures.at(texture);
+    t.transformS = transformS;
+    t.transformT = transformT;
+    textures.push_back(t);
+    return std::uint32_t(textures.size() - 1);
+}
+
 std::uint32_t Scene::addTexture(std::uint32_t width, std::uint32_t height, std::vector<glm::uvec2> linearTexels,
                                 std::uint32_t wrapS, std::uint32_t wrapT) {
     Texture t{};
@@ -250,6 +316,8 @@ std::uint32_t Scene::addTexture(std::uint32_t width, std::uint32_t height, std::
     t.width = width;
     t.height = height;
     t.wrap = wrapS | (wrapT << 4u);
+    t.transformS = glm::vec3(1.0f, 0.0f, 0.0f);
+    t.transformT = glm::vec3(0.0f, 1.0f, 0.0f);
     texels.insert(texels.end(), linearTexels.begin(), linearTexels.end());
     textures.push_back(t);
     return std::uint32_t(textures.size() - 1);
@@ -365,12 +433,24 @@ void mergeTargets(std::vector<CausticTarget>& targets, std::size_t limit) {
 }
 
 void Scene::finalize() {
-    // Every texture a material names exists: the shared code samples it unchecked.
+    // Every material is of a known type and every texture it names exists: the shared code
+    // samples them unchecked.
     for (std::size_t i = 0; i < materials.size(); ++i) {
-        if (materials[i].albedoTexture != NONE && materials[i].albedoTexture >= textures.size()) {
-            throw std::logic_error("material " + materialNames[i] + " names texture " +
-                                   std::to_string(materials[i].albedoTexture) + " of " + std::to_string(textures.size()));
+        const Material& m = materials[i];
+        if (m.type >= MATERIAL_TYPE_COUNT) {
+            throw std::logic_error("material " + materialNames[i] + " has unknown type " + std::to_string(m.type));
         }
+        for (std::uint32_t texture : {m.albedoTexture, m.metallicRoughnessTexture, m.normalTexture, m.emissionTexture}) {
+            if (texture != NONE && texture >= textures.size()) {
+                throw std::logic_error("material " + materialNames[i] + " names texture " + std::to_string(texture) +
+                                       " of " + std::to_string(textures.size()));
+            }
+        }
+    }
+    // Triangles whose material cuts them out or blends them are tested for coverage by every ray.
+    for (Triangle& t : triangles) {
+        bool tested = (materials[t.material].flags & (MATERIAL_FLAG_ALPHA_MASK | MATERIAL_FLAG_ALPHA_BLEND)) != 0u;
+        t.flags = tested ? TRIANGLE_ALPHA_TESTED : 0u;
     }
     // Bounds of everything finite (lights' own positions included).
     glm::vec3 lo(FLOAT_MAX);

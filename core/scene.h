@@ -28,6 +28,8 @@ Material makeGlass(float ior, glm::vec3 tint);
 Material makeGlossy(glm::vec3 albedo, glm::vec3 specular, float roughness);  // roughness = GGX α
 Material makeReflective(glm::vec3 albedo, glm::vec3 reflectance);  // Lambertian under a mirror coat
 Material makeEmitter(glm::vec3 radiance);
+// glTF's metallic-roughness material (shared/pbr.h), ior 1.5, opaque; roughness is perceptual (α = roughness²).
+Material makePbr(glm::vec3 baseColor, float metallic, float roughness);
 
 // The rows of shared/bindings.h whose size is SCENE: one host array each, named as the buffer.
 #define PH_SCENE_ONLY_SCENE(...) __VA_ARGS__
@@ -75,6 +77,9 @@ struct Scene {
     // A texture of linear RGBA texels (16 bits a channel, packed as in shared/texture.h); its index.
     std::uint32_t addTexture(std::uint32_t width, std::uint32_t height, std::vector<glm::uvec2> linearTexels,
                              std::uint32_t wrapS, std::uint32_t wrapT);
+    // The texels of `texture` seen through a transform of the texture coordinates
+    // (s' = transformS · (s, t, 1), t' likewise; KHR_texture_transform); its index.
+    std::uint32_t addTextureView(std::uint32_t texture, glm::vec3 transformS, glm::vec3 transformT);
 
     // Lights; power is the emitted flux in watts per channel. Area lights also add their visible
     // surface, with an emitter material of radiance Φ / (π · area).

@@ -20,7 +20,8 @@ std::uint32_t quantize(double linear) { return std::uint32_t(std::lround(std::cl
 }  // namespace
 
 std::uint32_t addImageTexture(Scene& scene, const std::string& bytes, std::uint32_t wrapS, std::uint32_t wrapT,
-                              const std::string& where) {
+                              const std::string& where, TextureEncoding encoding) {
+    auto decode = [encoding](double c) { return encoding == TextureEncoding::Srgb ? linearFromSrgb(c) : c; };
     const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
     if (bytes.size() > std::size_t(1) << 30) {
         throw InputError(where + ": image data over 1 GiB");
@@ -50,7 +51,7 @@ std::uint32_t addImageTexture(Scene& scene, const std::string& bytes, std::uint3
         for (std::size_t i = 0; i < texels.size(); ++i) {
             std::uint32_t c[4];
             for (int k = 0; k < 3; ++k) {
-                c[k] = quantize(linearFromSrgb(pixels.get()[4 * i + k] / 65535.0));
+                c[k] = quantize(decode(pixels.get()[4 * i + k] / 65535.0));
             }
             c[3] = pixels.get()[4 * i + 3];
             texels[i] = glm::uvec2(c[0] | (c[1] << 16), c[2] | (c[3] << 16));
@@ -62,7 +63,7 @@ std::uint32_t addImageTexture(Scene& scene, const std::string& bytes, std::uint3
         }
         std::uint32_t table[256];
         for (int v = 0; v < 256; ++v) {
-            table[v] = quantize(linearFromSrgb(v / 255.0));
+            table[v] = quantize(decode(v / 255.0));
         }
         for (std::size_t i = 0; i < texels.size(); ++i) {
             const stbi_uc* p = pixels.get() + 4 * i;

@@ -23,7 +23,17 @@ PH_CONST uint MATERIAL_GLASS = 2u;       // smooth dielectric with exact Fresnel
 PH_CONST uint MATERIAL_GLOSSY = 3u;      // Lambertian base + GGX microfacet lobe (Walter et al. 2007)
 PH_CONST uint MATERIAL_EMITTER = 4u;     // the visible surface of an area light: emits, absorbs everything
 PH_CONST uint MATERIAL_REFLECTIVE = 5u;  // Lambertian base under a perfect mirror coat (Whitted)
-PH_CONST uint MATERIAL_TYPE_COUNT = 6u;
+PH_CONST uint MATERIAL_PBR = 6u;         // glTF 2.0 metallic-roughness (its Appendix B), with transmission
+PH_CONST uint MATERIAL_TYPE_COUNT = 7u;
+
+// Material::flags bits.
+PH_CONST uint MATERIAL_FLAG_ALPHA_MASK = 1u;   // cut out where coverage α < alphaCutoff (glTF MASK)
+PH_CONST uint MATERIAL_FLAG_ALPHA_BLEND = 2u;  // present with probability α (glTF BLEND, stochastically)
+PH_CONST uint MATERIAL_FLAG_THIN_WALLED = 4u;  // pbr transmission passes straight through (no volume)
+PH_CONST uint MATERIAL_FLAG_STORED_PART = 8u;  // pbr: only the lobes density estimates see (storedPart)
+
+// Triangle::flags bits.
+PH_CONST uint TRIANGLE_ALPHA_TESTED = 1u;      // its material's coverage decides whether a ray hits
 
 // Light types (Light::type).
 PH_CONST uint LIGHT_POINT = 0u;
@@ -133,6 +143,8 @@ PH_CONST uint PHOTON_PATHS_MAX = 67108864u;  // 2^26 photon paths a frame, so th
 // TriangleAttributes::flags bits.
 PH_CONST uint ATTRIBUTE_NORMALS = 1u;    // the vertex normals are set
 PH_CONST uint ATTRIBUTE_TEXCOORDS = 2u;  // the texture coordinates are set
+PH_CONST uint ATTRIBUTE_TANGENT = 4u;    // the tangent is set (with texture coordinates)
+PH_CONST uint ATTRIBUTE_FLIPPED_BITANGENT = 8u;  // the bitangent is −(n × t): a mirrored texture mapping
 
 // Texture wrap modes (the glTF sampler's), for s and t (Texture::wrap).
 PH_CONST uint WRAP_REPEAT = 0u;

@@ -88,6 +88,10 @@ PH_FN HitPoint emptyHitPoint() {
     hp.outgoing = 0u;
     hp.albedo = vec3(0.0f);
     hp.geometricNormal = 0u;
+    hp.metallic = 0.0f;
+    hp.roughness = 0.0f;
+    hp.pad0 = 0u;
+    hp.pad1 = 0u;
     return hp;
 }
 
@@ -107,6 +111,7 @@ PH_FN HitPoint tracePixel(BUF_PARAM uint pixel) {
                         BUF(params).flags, rng);
     HitPoint hp = emptyHitPoint();
     vec3 weight = vec3(1.0f);
+    bool emittersSampled = false;  // the last bounce's lobe took direct light by shadow rays
     for (uint depth = 0u; depth < BUF(params).maxEyeDepth; ++depth) {
         Hit hit;
         if (!traceClosest(BUF_ARG ray, hit)) {
@@ -117,16 +122,51 @@ PH_FN HitPoint tracePixel(BUF_PARAM uint pixel) {
         Material m = sp.material;
         uint surface = materialFlags(m);
         vec3 wo = -ray.direction;
+        weight *= volumeTransmittance(m, dot(wo, hit.normal), hit.t);
         if ((surface & SURFACE_EMITS) != 0u) {
             // Seen by the camera or through mirrors and glass; at diffuse surfaces direct light
-            // counts emitters with shadow rays.
-            if (dot(wo, hit.normal) > 0.0f) {
+            // counts the lights (area lights, emissive triangles) with shadow rays.
+            bool sampled = emittersSampled && (m.type == MATERIAL_EMITTER || hit.kind == PRIM_TRIANGLE);
+            if (dot(wo, hit.normal) > 0.0f && !sampled) {
                 hp.direct += weight * m.emission;
             }
             if (m.type == MATERIAL_EMITTER) {
                 break;
             }
         }
+        float side = dot(wo, sp.geometricNormal) >= 0.0f ? 1.0f : -1.0f;
+        vec3 ng = sp.geometricNormal * side;
+        vec3 ns = sp.shadingNormal * side;
+        if (m.type == MATERIAL_PBR) {
+            // Direct light through every lobe shadow rays can find, whichever way the path goes
+            // on; then the path ends at the stored lobes or follows a traced one.
+            bool stores = (surface & SURFACE_STORES_PHOTONS) != 0u;
+            if (stores || m.roughness >= PBR_DELTA_ALPHA) {
+                hp.direct += weight * directLight(BUF_ARG hit.position, ns, ng, wo, m, rng);
+            }
+            float pTraced = stores ? pbrTracedProbability(m, dot(wo, ns)) : 1.0f;
+            if (stores && rngNext(rng) >= pTraced) {
+                hp.position = hit.position;
+                hp.material = hit.material;
+                hp.weight = weight / (1.0f - pTraced);
+                hp.normal = octEncode(ns);
+                hp.geometricNormal = octEncode(ng);
+                hp.outgoing = octEncode(wo);
+                hp.albedo = m.albedo;
+                hp.metallic = m.metallic;
+                hp.roughness = m.roughness;
+                break;
+            }
+            BsdfSample bs = sampleBsdfLobes(m, wo, sp.geometricNormal, sp.shadingNormal, PBR_LOBES_TRACED, rng);
+            if (bs.lobe == LOBE_NONE) {
+                break;
+            }
+            weight *= bs.weight / pTraced;
+            emittersSampled = m.roughness >= PBR_DELTA_ALPHA && dot(bs.direction, ng) > 0.0f;
+            ray = makeRay(offsetRayOrigin(hit.position, sp.geometricNormal, bs.direction), bs.direction, FLOAT_MAX);
+            continue;
+        }
+        emittersSampled = false;
         // A mirror coat continues the path, or the surface's base ends it here.
         bool mirrorCoat = false;
         if ((surface & SURFACE_SPECULAR_COAT) != 0u) {
@@ -134,9 +174,6 @@ PH_FN HitPoint tracePixel(BUF_PARAM uint pixel) {
             mirrorCoat = rngNext(rng) < pMirror;
             weight *= mirrorCoat ? vec3(1.0f) : vec3(1.0f / (1.0f - pMirror));
         }
-        float side = dot(wo, sp.geometricNormal) >= 0.0f ? 1.0f : -1.0f;
-        vec3 ng = sp.geometricNormal * side;
-        vec3 ns = sp.shadingNormal * side;
         if ((surface & SURFACE_ENDS_EYE_PATHS) != 0u && !mirrorCoat) {
             hp.position = hit.position;
             hp.material = hit.material;
@@ -145,6 +182,8 @@ PH_FN HitPoint tracePixel(BUF_PARAM uint pixel) {
             hp.geometricNormal = octEncode(ng);
             hp.outgoing = octEncode(wo);
             hp.albedo = m.albedo;
+            hp.metallic = m.metallic;
+            hp.roughness = m.roughness;
             hp.direct += weight * directLight(BUF_ARG hit.position, ns, ng, wo, storedPart(m), rng);
             break;
         }

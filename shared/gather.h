@@ -42,6 +42,7 @@ PH_FN vec3 finalGather(BUF_PARAM PH_IN(Shading) s, uint estimator, PH_INOUT(Rng)
             Material m = sp.material;
             vec3 wo = -ray.direction;
             uint surface = materialFlags(m);
+            weight *= volumeTransmittance(m, dot(wo, hit.normal), hit.t);
             if ((surface & SURFACE_STORES_PHOTONS) != 0u) {
                 float side = dot(wo, sp.geometricNormal) >= 0.0f ? 1.0f : -1.0f;
                 Shading there = makeShading(hit.position, sp.shadingNormal * side, sp.geometricNormal * side, wo, storedPart(m));
@@ -79,6 +80,8 @@ PH_FN bool viewShowsMap(uint view, uint map) {
 PH_FN Shading hitPointShading(BUF_PARAM PH_IN(HitPoint) hp) {
     Material m = storedPart(BUF(materials)[hp.material]);
     m.albedo = hp.albedo;
+    m.metallic = hp.metallic;
+    m.roughness = hp.roughness;
     return makeShading(hp.position, octDecode(hp.normal), octDecode(hp.geometricNormal), octDecode(hp.outgoing), m);
 }
 

@@ -7,6 +7,7 @@
 
 #include "bindings.h"
 #include "math.h"
+#include "texture.h"
 
 PH_NAMESPACE_BEGIN
 
@@ -193,7 +194,12 @@ PH_FN float intersectPrimitive(BUF_PARAM uint ref, PH_IN(Ray) ray, PH_IN(RayFram
     if (kind == PRIM_QUAD) {
         return intersectQuad(ray, BUF(quads)[index], tMax);
     }
-    return intersectTriangle(frame, BUF(triangles)[index], tMax, b1, b2);
+    Triangle tri = BUF(triangles)[index];
+    float t = intersectTriangle(frame, tri, tMax, b1, b2);
+    if (t < tMax && (tri.flags & TRIANGLE_ALPHA_TESTED) != 0u && !coverageHolds(BUF_ARG tri, b1, b2, ray.direction)) {
+        return tMax;  // cut out (alpha mask) or, this time, seen through (alpha blend)
+    }
+    return t;
 }
 
 // The result of a scene query.

@@ -43,7 +43,7 @@ struct PH_ALIGN16 Quad {
 struct PH_ALIGN16 Triangle {
     vec3 v0; uint material;
     vec3 v1; uint attributes;  // its TriangleAttributes, or NONE: flat, no texture coordinates
-    vec3 v2; float pad0;
+    vec3 v2; uint flags;       // TRIANGLE_* bits, from its material (Scene::finalize)
 };
 
 // What a mesh triangle carries besides its vertices: vertex normals for smooth shading and
@@ -51,19 +51,30 @@ struct PH_ALIGN16 Triangle {
 struct PH_ALIGN16 TriangleAttributes {
     uint normal0; uint normal1; uint normal2; uint flags;  // octahedral vertex normals; ATTRIBUTE_* bits
     float s0; float t0; float s1; float t1;
-    float s2; float t2; float pad0; float pad1;
+    float s2; float t2; uint tangent; float pad0;  // tangent: octahedral unit ∂p/∂s of the triangle
 };
 
 struct PH_ALIGN16 Material {
-    vec3 albedo; uint type;         // diffuse reflectance ρ (diffuse, glossy, reflective)
+    vec3 albedo; uint type;          // diffuse reflectance ρ (diffuse, glossy, reflective); base colour (pbr)
     vec3 specular; float roughness;  // mirror reflectance, glass tint, glossy lobe colour; GGX α
-    vec3 emission; float ior;       // emitted radiance (front side); index of refraction (glass)
-    uint albedoTexture; uint pad0; uint pad1; uint pad2;  // a Texture that multiplies albedo, or NONE
+    vec3 emission; float ior;        // emitted radiance (front side); index of refraction (glass, pbr)
+    uint albedoTexture; uint metallicRoughnessTexture; uint normalTexture; uint emissionTexture;
+    // Textures (each NONE or a Texture): albedoTexture multiplies albedo and alpha;
+    // metallicRoughnessTexture metallic (blue) and perceptual roughness (green); normalTexture a
+    // tangent-space normal; emissionTexture multiplies emission
+    float metallic; float transmission; float alpha; float alphaCutoff;
+    // pbr: metallic and transmission factors ∈ [0, 1]; every type: coverage α (MASK: cut out where
+    // α < alphaCutoff; BLEND: kept with probability α)
+    vec3 attenuation; uint flags;    // absorption coefficient σa [1/m] inside (Beer–Lambert); MATERIAL_FLAG_*
+    float normalScale; uint pad0; uint pad1; uint pad2;  // scale of the normal texture's x and y
 };
 
-// An image in the texels buffer: width × height texels from `offset`, row by row from the top.
+// An image in the texels buffer: width × height texels from `offset`, row by row from the top, as
+// a material sees it: through a transform of its texture coordinates (KHR_texture_transform).
 struct PH_ALIGN16 Texture {
     uint offset; uint width; uint height; uint wrap;  // wrap: WRAP_* of s | (WRAP_* of t) << 4
+    vec3 transformS; uint pad0;      // s' = dot(transformS, (s, t, 1))
+    vec3 transformT; uint pad1;      // t' = dot(transformT, (s, t, 1))
 };
 
 // A node of the bounding volume hierarchy with both children's boxes (Aila & Laine 2009), so that
@@ -166,6 +177,7 @@ struct PH_ALIGN16 HitPoint {
     vec3 weight; uint normal;        // path throughput from the camera; octahedral shading normal facing ωo
     vec3 direct; uint outgoing;      // weighted emission, background and direct light; octahedral ωo
     vec3 albedo; uint geometricNormal;  // the albedo there (textured); octahedral geometric normal facing ωo
+    float metallic; float roughness; uint pad0; uint pad1;  // pbr: textured metallic and GGX α there
 };
 
 // A pixel's statistics under stochastic progressive photon mapping (sppm.h), kept across frames:
@@ -186,13 +198,15 @@ PH_SIZE(Plane, 32); PH_OFFSET(Plane, offset, 12); PH_OFFSET(Plane, material, 16)
 PH_SIZE(Quad, 64); PH_OFFSET(Quad, material, 12); PH_OFFSET(Quad, edgeU, 16); PH_OFFSET(Quad, area, 28);
 PH_OFFSET(Quad, edgeV, 32); PH_OFFSET(Quad, w, 48);
 PH_SIZE(Triangle, 48); PH_OFFSET(Triangle, material, 12); PH_OFFSET(Triangle, v1, 16);
-PH_OFFSET(Triangle, attributes, 28); PH_OFFSET(Triangle, v2, 32);
+PH_OFFSET(Triangle, attributes, 28); PH_OFFSET(Triangle, v2, 32); PH_OFFSET(Triangle, flags, 44);
 PH_SIZE(TriangleAttributes, 48); PH_OFFSET(TriangleAttributes, flags, 12); PH_OFFSET(TriangleAttributes, s0, 16);
-PH_OFFSET(TriangleAttributes, t2, 36);
-PH_SIZE(Material, 64); PH_OFFSET(Material, type, 12); PH_OFFSET(Material, specular, 16);
+PH_OFFSET(TriangleAttributes, t2, 36); PH_OFFSET(TriangleAttributes, tangent, 40);
+PH_SIZE(Material, 112); PH_OFFSET(Material, type, 12); PH_OFFSET(Material, specular, 16);
 PH_OFFSET(Material, roughness, 28); PH_OFFSET(Material, emission, 32); PH_OFFSET(Material, ior, 44);
-PH_OFFSET(Material, albedoTexture, 48);
-PH_SIZE(Texture, 16); PH_OFFSET(Texture, wrap, 12);
+PH_OFFSET(Material, albedoTexture, 48); PH_OFFSET(Material, emissionTexture, 60); PH_OFFSET(Material, metallic, 64);
+PH_OFFSET(Material, alphaCutoff, 76); PH_OFFSET(Material, attenuation, 80); PH_OFFSET(Material, flags, 92);
+PH_OFFSET(Material, normalScale, 96);
+PH_SIZE(Texture, 48); PH_OFFSET(Texture, wrap, 12); PH_OFFSET(Texture, transformS, 16); PH_OFFSET(Texture, transformT, 32);
 PH_SIZE(BvhNode, 64); PH_OFFSET(BvhNode, childA, 12); PH_OFFSET(BvhNode, upperA, 16); PH_OFFSET(BvhNode, countA, 28);
 PH_OFFSET(BvhNode, lowerB, 32); PH_OFFSET(BvhNode, childB, 44); PH_OFFSET(BvhNode, upperB, 48);
 PH_OFFSET(BvhNode, countB, 60);
@@ -221,7 +235,7 @@ PH_OFFSET(FrameParams, alpha, 304); PH_OFFSET(FrameParams, pathFirst, 320);
 PH_SIZE(SppmPixel, 64); PH_OFFSET(SppmPixel, countGlobal, 12); PH_OFFSET(SppmPixel, radiusGlobal, 28);
 PH_OFFSET(SppmPixel, fluxCaustic, 32); PH_OFFSET(SppmPixel, countCaustic, 48);
 PH_SIZE(Photon, 32); PH_OFFSET(Photon, incoming, 12); PH_OFFSET(Photon, power, 16); PH_OFFSET(Photon, id, 28);
-PH_SIZE(HitPoint, 64); PH_OFFSET(HitPoint, material, 12); PH_OFFSET(HitPoint, weight, 16);
+PH_SIZE(HitPoint, 80); PH_OFFSET(HitPoint, metallic, 64); PH_OFFSET(HitPoint, roughness, 68); PH_OFFSET(HitPoint, material, 12); PH_OFFSET(HitPoint, weight, 16);
 PH_OFFSET(HitPoint, normal, 28); PH_OFFSET(HitPoint, direct, 32); PH_OFFSET(HitPoint, outgoing, 44);
 PH_OFFSET(HitPoint, albedo, 48); PH_OFFSET(HitPoint, geometricNormal, 60);
 }  // namespace photon

@@ -98,7 +98,7 @@ PH_FN void sampleAreaLight(BUF_PARAM PH_IN(Light) light, float u0, float u1, flo
         float su = sqrt(u1);
         p = tri.v0 * (1.0f - su) + tri.v1 * (su * (1.0f - u2)) + tri.v2 * (su * u2);
         n = unitVector(cross(tri.v1 - tri.v0, tri.v2 - tri.v0));
-        radiance = BUF(materials)[tri.material].emission;
+        radiance = triangleEmission(BUF_ARG tri, su * (1.0f - u2), su * u2);
         areaPdf = e.probability / e.area;
         return;
     }

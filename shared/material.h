@@ -15,11 +15,32 @@ PH_NAMESPACE_BEGIN
 
 PH_CONST uint SURFACE_STORES_PHOTONS = 1u;   // a non-delta lobe: photons are stored, estimates read them
 PH_CONST uint SURFACE_ENDS_EYE_PATHS = 2u;   // eye paths end here with direct light and photon estimates
-PH_CONST uint SURFACE_CAUSTIC_CASTER = 4u;   // delta lobes only (mirror, glass)
-PH_CONST uint SURFACE_SPECULAR_COAT = 8u;    // a delta lobe over a stored base (reflective)
+PH_CONST uint SURFACE_CAUSTIC_CASTER = 4u;   // traced lobes only (mirror, glass; smooth metal, pbr glass)
+PH_CONST uint SURFACE_SPECULAR_COAT = 8u;    // a traced lobe over a stored base (reflective; pbr)
 PH_CONST uint SURFACE_EMITS = 16u;           // the visible surface of an area light
 PH_CONST uint SURFACE_LAMBERTIAN = 32u;      // what is stored reflects as albedo/π: estimates take it
                                              // out of their sums
+
+// The glTF metallic-roughness material (MATERIAL_PBR, pbr.h) splits its lobes by roughness into
+// the ones eye and photon paths follow by sampling (as they follow mirrors and glass) and the ones
+// density estimates read (as for Lambertian and glossy surfaces):
+//   traced: the specular lobes (dielectric and metal) of GGX α below PBR_TRACED_ALPHA, and the
+//           transmission of any roughness (what refracts cannot be estimated from the side it
+//           left); photons that take them stay on caustic paths;
+//   stored: the diffuse lobe, and the specular lobes from PBR_TRACED_ALPHA up.
+// Below PBR_DELTA_ALPHA a specular lobe is a delta distribution to direct light too: shadow rays
+// cannot find its highlight, so emitters are counted where its sampled ray meets them.
+PH_CONST float PBR_TRACED_ALPHA = 0.09f;  // perceptual roughness 0.3
+PH_CONST float PBR_DELTA_ALPHA = 0.0025f;  // perceptual roughness 0.05
+
+PH_FN bool pbrHasStoredLobes(PH_IN(Material) m) {
+    return (m.metallic < 1.0f && m.transmission < 1.0f) || (m.metallic > 0.0f && m.roughness >= PBR_TRACED_ALPHA);
+}
+
+PH_FN bool pbrHasTracedLobes(PH_IN(Material) m) {
+    return (m.roughness < PBR_TRACED_ALPHA && (m.metallic > 0.0f || m.transmission < 1.0f)) ||
+           (m.metallic < 1.0f && m.transmission > 0.0f);
+}
 
 PH_FN uint materialFlags(PH_IN(Material) m) {
     uint emits = isBlack(m.emission) ? 0u : SURFACE_EMITS;  // any material may also emit (glTF, MTL Ke)
@@ -38,7 +59,14 @@ PH_FN uint materialFlags(PH_IN(Material) m) {
     if (m.type == MATERIAL_EMITTER) {
         return SURFACE_EMITS;
     }
-    return 0u;
+    // MATERIAL_PBR (the host refuses any other type: Scene::finalize).
+    if ((m.flags & MATERIAL_FLAG_STORED_PART) != 0u || !pbrHasTracedLobes(m)) {
+        return emits | SURFACE_STORES_PHOTONS | SURFACE_ENDS_EYE_PATHS;
+    }
+    if (!pbrHasStoredLobes(m)) {
+        return emits | SURFACE_CAUSTIC_CASTER;
+    }
+    return emits | SURFACE_STORES_PHOTONS | SURFACE_ENDS_EYE_PATHS | SURFACE_SPECULAR_COAT;
 }
 
 PH_FN bool surfaceIs(PH_IN(Material) m, uint flag) { return (materialFlags(m) & flag) != 0u; }
@@ -59,7 +87,9 @@ PH_FN float mirrorCoatProbability(PH_IN(Material) m) {
 // a delta lobe that only traced rays can follow.
 PH_FN Material storedPart(PH_IN(Material) m) {
     Material d = m;
-    if (surfaceIs(m, SURFACE_SPECULAR_COAT)) {
+    if (m.type == MATERIAL_PBR) {
+        d.flags |= MATERIAL_FLAG_STORED_PART;
+    } else if (surfaceIs(m, SURFACE_SPECULAR_COAT)) {
         d.type = MATERIAL_DIFFUSE;
         d.specular = vec3(0.0f);
     }

@@ -76,6 +76,7 @@ PH_FN uint photonBounce(BUF_PARAM PH_INOUT(PhotonPath) path, PH_OUT(Photon) phot
     }
     SurfacePoint sp = surfaceAt(BUF_ARG hit);
     Material m = sp.material;
+    path.power *= volumeTransmittance(m, dot(path.direction, -hit.normal), hit.t);
     bool causticPass = (path.flags & PATH_CAUSTIC_PASS) != 0u;
     uint surface = materialFlags(m);
     if (path.depth == 0u && (surface & SURFACE_CAUSTIC_CASTER) != 0u && hit.kind != PRIM_PLANE) {

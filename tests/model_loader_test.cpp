@@ -18,6 +18,7 @@
 
 #include "core/error.h"
 #include "core/image.h"
+#include "shared/material.h"
 #include "shared/math.h"
 #include "test_util.h"
 
@@ -348,20 +349,68 @@ TEST(GltfLoader, MaterialsMapAsDocumented) {
     load(scene, "mat.gltf", g.text());
     ASSERT_EQ(scene.triangles.size(), 6u);
     auto material = [&](int i) { return scene.materials[scene.triangles[std::size_t(i)].material]; };
-    EXPECT_EQ(material(0).type, MATERIAL_DIFFUSE);
+    // Every glTF material is the metallic-roughness model with its factors as they are: no thresholds.
+    for (int i = 0; i < 6; ++i) {
+        EXPECT_EQ(material(i).type, MATERIAL_PBR);
+        EXPECT_EQ(material(i).albedoTexture, NONE);
+    }
     expectNear(material(0).albedo, glm::vec3(0.5f, 0.25f, 0.125f));
-    EXPECT_EQ(material(1).type, MATERIAL_MIRROR);
-    expectNear(material(1).specular, glm::vec3(0.9f, 0.8f, 0.7f));
-    EXPECT_EQ(material(2).type, MATERIAL_GLOSSY);
-    expectNear(material(2).specular, glm::vec3(0.9f, 0.8f, 0.7f));
-    expectNear(material(2).albedo, glm::vec3(0.0f));
+    EXPECT_FLOAT_EQ(material(0).metallic, 0.0f);
+    EXPECT_FLOAT_EQ(material(0).roughness, 1.0f);
+    expectNear(material(1).albedo, glm::vec3(0.9f, 0.8f, 0.7f));
+    EXPECT_FLOAT_EQ(material(1).metallic, 1.0f);
+    EXPECT_FLOAT_EQ(material(1).roughness, 0.0f);
     EXPECT_NEAR(material(2).roughness, 0.25f, 1e-6f);  // α = roughness²
-    EXPECT_EQ(material(3).type, MATERIAL_GLASS);
+    EXPECT_FLOAT_EQ(material(3).transmission, 1.0f);
     EXPECT_FLOAT_EQ(material(3).ior, 1.7f);
+    EXPECT_NE(material(3).flags & MATERIAL_FLAG_THIN_WALLED, 0u) << "no KHR_materials_volume: a thin sheet";
+    EXPECT_FLOAT_EQ(material(0).ior, 1.5f);
     expectNear(material(4).emission, glm::vec3(4, 2, 1));
-    EXPECT_EQ(material(5).type, MATERIAL_GLOSSY);  // a dielectric coat over the base colour
-    expectNear(material(5).specular, glm::vec3(0.04f));
-    expectNear(material(5).albedo, glm::vec3(0.48f));
+    EXPECT_NEAR(material(5).roughness, 0.09f, 1e-6f);
+    // What the flags make of them: a rough dielectric stores photons, a smooth metal and a
+    // transmissive glass are traced like mirrors and glass (and are caustic casters).
+    EXPECT_TRUE(surfaceIs(material(0), SURFACE_STORES_PHOTONS));
+    EXPECT_FALSE(surfaceIs(material(0), SURFACE_SPECULAR_COAT));
+    EXPECT_TRUE(surfaceIs(material(1), SURFACE_CAUSTIC_CASTER));
+    EXPECT_TRUE(surfaceIs(material(2), SURFACE_STORES_PHOTONS));
+    EXPECT_TRUE(surfaceIs(material(3), SURFACE_CAUSTIC_CASTER));
+}
+
+TEST(GltfLoader, AlphaModesVolumeAndTextureTransform) {
+    Gltf g;
+    g.parts["extensionsUsed"] = R"(["KHR_materials_volume", "KHR_materials_transmission", "KHR_texture_transform"])";
+    g.parts["materials"] = R"([
+        {"alphaMode": "MASK", "alphaCutoff": 0.25, "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.5]}},
+        {"alphaMode": "BLEND"},
+        {"extensions": {"KHR_materials_transmission": {"transmissionFactor": 1},
+                        "KHR_materials_volume": {"thicknessFactor": 1, "attenuationDistance": 2,
+                                                 "attenuationColor": [0.5, 1, 0.25]}}}])";
+    std::string meshes = "[";
+    std::string nodes = "[";
+    std::string roots = "[";
+    for (int i = 0; i < 3; ++i) {
+        std::string n = std::to_string(i);
+        meshes += (i ? "," : "") + std::string(R"({"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": )") + n + "}]}";
+        nodes += (i ? "," : "") + std::string(R"({"mesh": )") + n + "}";
+        roots += (i ? "," : "") + n;
+    }
+    g.parts["meshes"] = meshes + "]";
+    g.parts["nodes"] = nodes + "]";
+    g.parts["scenes"] = R"([{"nodes": )" + roots + "]}]";
+    Scene scene;
+    load(scene, "alpha.gltf", g.text());
+    scene.finalize();
+    auto material = [&](int i) { return scene.materials[scene.triangles[std::size_t(i)].material]; };
+    EXPECT_EQ(material(0).flags & MATERIAL_FLAG_ALPHA_MASK, MATERIAL_FLAG_ALPHA_MASK);
+    EXPECT_FLOAT_EQ(material(0).alphaCutoff, 0.25f);
+    EXPECT_FLOAT_EQ(material(0).alpha, 0.5f);
+    EXPECT_EQ(material(1).flags & MATERIAL_FLAG_ALPHA_BLEND, MATERIAL_FLAG_ALPHA_BLEND);
+    EXPECT_EQ(scene.triangles[0].flags, TRIANGLE_ALPHA_TESTED);
+    EXPECT_EQ(scene.triangles[1].flags, TRIANGLE_ALPHA_TESTED);
+    EXPECT_EQ(scene.triangles[2].flags, 0u);
+    EXPECT_EQ(material(2).flags & MATERIAL_FLAG_THIN_WALLED, 0u) << "a volume refracts";
+    // σ = −ln(colour) / distance.
+    expectNear(material(2).attenuation, glm::vec3(std::log(2.0f) / 2.0f, 0.0f, std::log(4.0f) / 2.0f), 1e-5f);
 }
 
 TEST(GltfLoader, BaseColourTextureWithItsSampler) {
