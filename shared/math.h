@@ -49,6 +49,22 @@ PH_FN void sinCos2Pi(float u, PH_OUT(float) s, PH_OUT(float) c) {
     }
 }
 
+// e^(−x) for x ≥ 0 without a transcendental function, so that every backend computes the same
+// bits (libm's, CUDA's and the drivers' exp differ): e^(−x) = 2^(−k) · e^(−f·ln 2) with k = ⌊x·log₂e⌋,
+// the power of two written into the exponent field and the rest a Taylor polynomial
+// (relative error < 2e-7).
+PH_FN float expNegative(float x) {
+    float y = max(x, 0.0f) * 1.44269504f;
+    if (!(y < 126.0f)) {
+        return 0.0f;
+    }
+    float k = floor(y);
+    float t = (y - k) * 0.693147181f;
+    float p = 1.0f - t * (1.0f - t * (0.5f - t * (1.6666667e-1f - t * (4.1666667e-2f - t * (8.3333333e-3f -
+              t * (1.3888889e-3f - t * (1.9841270e-4f - t * 2.4801587e-5f)))))));
+    return p * uintBitsToFloat(uint(127 - int(k)) << 23u);
+}
+
 // Orthonormal basis around a unit normal (Duff et al., "Building an Orthonormal Basis, Revisited",
 // JCGT 2017). localToWorld maps (x, y, z) in that frame, z along n, to world space.
 PH_FN vec3 localToWorld(vec3 v, vec3 n) {

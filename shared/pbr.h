@@ -223,7 +223,8 @@ PH_FN vec3 volumeTransmittance(PH_IN(Material) m, float cosGeometric, float t) {
     if (cosGeometric >= 0.0f || isBlack(m.attenuation)) {
         return vec3(1.0f);
     }
-    return exp(-m.attenuation * t);
+    vec3 x = m.attenuation * t;
+    return vec3(expNegative(x.x), expNegative(x.y), expNegative(x.z));
 }
 
 PH_NAMESPACE_END

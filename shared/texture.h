@@ -6,6 +6,7 @@
 #define PHOTON_SHARED_TEXTURE_H
 
 #include "bindings.h"
+#include "rng.h"
 
 PH_NAMESPACE_BEGIN
 
@@ -96,12 +97,9 @@ PH_FN bool coverageHolds(BUF_PARAM PH_IN(Triangle) tri, float b1, float b2, vec3
     if ((m.flags & MATERIAL_FLAG_ALPHA_MASK) != 0u) {
         return alpha >= m.alphaCutoff;
     }
-    uint h = floatBitsToUint(b1) * 0x9e3779b9u ^ floatBitsToUint(b2) * 0x85ebca6bu ^ floatBitsToUint(direction.x) * 0xc2b2ae35u ^
-             floatBitsToUint(direction.y) * 0x27d4eb2fu ^ floatBitsToUint(direction.z);
-    h ^= h >> 15u;
-    h *= 0x2c1b3c6du;
-    h ^= h >> 12u;
-    return float(h >> 8u) * (1.0f / 16777216.0f) < alpha;
+    uvec4 h = pcg4d(uvec4(floatBitsToUint(b1), floatBitsToUint(b2), floatBitsToUint(direction.x) ^ floatBitsToUint(direction.z),
+                          floatBitsToUint(direction.y)));
+    return float(h.x >> 8u) * (1.0f / 16777216.0f) < alpha;
 }
 
 PH_NAMESPACE_END

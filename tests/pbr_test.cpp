@@ -3,15 +3,20 @@
 //                  and the mean sample weight (what paths carry) equals a quadrature of evalBsdf
 //                  within 1% over a grid of metallic × roughness × view angles;
 //   χ²:           the sampled directions follow pdfPbr;
-//   transmission: a smooth white glass reflects and transmits everything (E = 1).
+//   transmission: a smooth white glass reflects and transmits everything (E = 1);
+//   coverage:     an alpha-masked surface is absent for rays where its texture's alpha is below
+//                 the cutoff, a blended one present in proportion to alpha;
+//   volume:       photons through an absorbing slab arrive with exp(−σd) of their power.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <vector>
 
+#include "apps/backends.h"
 #include "core/scene.h"
 #include "shared/bsdf.h"
+#include "shared/intersect.h"
 #include "test_util.h"
 
 namespace photon {
@@ -175,6 +180,104 @@ TEST(PbrBsdf, SamplingFollowsItsPdf) {
             double chi2 = test::chiSquare(observed, expected, dof);
             EXPECT_LT(chi2, test::chiSquareThreshold(dof)) << "metallic " << metallic << " roughness " << roughness;
         }
+    }
+}
+
+// A unit square of two triangles at z = 0 facing +z, texture s across x, with a 2×1 texture
+// whose left texel is transparent (α 0) and right one opaque.
+Scene coverageScene(std::uint32_t flags, float alpha) {
+    Scene s;
+    std::vector<glm::uvec2> texels = {glm::uvec2(0xffffffffu, 0x0000ffffu), glm::uvec2(0xffffffffu, 0xffffffffu)};
+    std::uint32_t texture = s.addTexture(2, 1, texels, WRAP_CLAMP, WRAP_CLAMP);
+    Material m = makePbr(vec3(0.8f), 0.0f, 1.0f);
+    m.albedoTexture = texture;
+    m.flags = flags;
+    m.alpha = alpha;
+    std::uint32_t material = s.addMaterial("leaf", m);
+    Mesh mesh;
+    mesh.positions = {vec3(0, 0, 0), vec3(1, 0, 0), vec3(1, 1, 0), vec3(0, 1, 0)};
+    mesh.texcoords = {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(1, 1), glm::vec2(0, 1)};
+    mesh.triangles = {glm::uvec3(0, 1, 2), glm::uvec3(0, 2, 3)};
+    mesh.materials = {material, material};
+    s.addMesh(mesh, glm::mat4(1.0f));
+    s.addPointLight(vec3(0.5f, 0.5f, 5.0f), vec3(1.0f));
+    return s;
+}
+
+TEST(Coverage, AlphaMaskCutsOutWhereTheTextureIsTransparent) {
+    test::SceneBindings sb(coverageScene(MATERIAL_FLAG_ALPHA_MASK, 1.0f));
+    Hit hit;
+    auto down = [](float x) { return makeRay(vec3(x, 0.5f, 1.0f), vec3(0, 0, -1), FLOAT_MAX); };
+    EXPECT_FALSE(traceClosest(sb.bindings, down(0.1f), hit)) << "α 0 under the cutoff: a hole";
+    EXPECT_TRUE(traceClosest(sb.bindings, down(0.9f), hit)) << "α 1: solid";
+    EXPECT_FALSE(traceOccluded(sb.bindings, vec3(0.1f, 0.5f, 1.0f), vec3(0, 0, -1), 2.0f)) << "shadow rays too";
+    EXPECT_TRUE(traceOccluded(sb.bindings, vec3(0.9f, 0.5f, 1.0f), vec3(0, 0, -1), 2.0f));
+    // The same square opaque: every ray hits.
+    test::SceneBindings opaque(coverageScene(0u, 1.0f));
+    EXPECT_TRUE(traceClosest(opaque.bindings, down(0.1f), hit));
+}
+
+TEST(Coverage, AlphaBlendIsPresentInProportionToAlpha) {
+    test::SceneBindings sb(coverageScene(MATERIAL_FLAG_ALPHA_BLEND, 0.3f));
+    int hits = 0;
+    constexpr int kRays = 20000;
+    Rng rng = rngCreate(5u, 0u, 0u, 0u);
+    for (int i = 0; i < kRays; ++i) {
+        // Rays that land beyond the opaque texel's centre (α = 0.3 · 1) and inside the square.
+        float x = 0.76f + 0.1f * rngNext(rng);
+        float y = 0.05f + 0.8f * rngNext(rng);
+        vec3 d = glm::normalize(vec3(0.1f * rngNext(rng), 0.1f * rngNext(rng), -1.0f));
+        Hit hit;
+        hits += traceClosest(sb.bindings, makeRay(vec3(x, y, 1.0f), d, FLOAT_MAX), hit) ? 1 : 0;
+    }
+    EXPECT_NEAR(double(hits) / kRays, 0.3, 0.02);
+}
+
+// A directional light through a glass slab of thickness d onto a floor: with the same random
+// numbers every photon path is the same, so the caustic map's power under an absorbing slab is
+// exp(−σd) of a clear one's, channel by channel.
+TEST(Volume, PhotonsThroughAnAbsorbingSlabLoseExpMinusSigmaD) {
+    const float d = 0.5f;
+    const vec3 sigma(0.2f, 1.0f, 3.0f);
+    auto causticPower = [&](vec3 attenuation) {
+        Scene s;
+        Material glass = makePbr(vec3(1.0f), 0.0f, 0.0f);
+        glass.transmission = 1.0f;
+        glass.attenuation = attenuation;
+        std::uint32_t slab = s.addMaterial("slab", glass);
+        std::uint32_t floor = s.addMaterial("floor", makeDiffuse(vec3(0.5f)));
+        Mesh box;
+        for (int i = 0; i < 8; ++i) {
+            box.positions.push_back(vec3(i & 1 ? 1.0f : -1.0f, i & 2 ? 1.0f : -1.0f, i & 4 ? 1.0f + d : 1.0f));
+        }
+        box.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                         {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+        box.materials.assign(box.triangles.size(), slab);
+        s.addMesh(box, glm::mat4(1.0f));
+        s.addQuad(vec3(-0.5f, -0.5f, 0.0f), vec3(1, 0, 0), vec3(0, 1, 0), floor);
+        s.addDirectionalLight(vec3(0, 0, -1), vec3(1.0f));
+        s.camera.position = vec3(0, -3, 3);
+        s.camera.lookAt = vec3(0);
+        s.finalize();
+        RenderSettings settings;
+        settings.width = 4;
+        settings.height = 4;
+        settings.photons = 50000;
+        auto backend = createBackend("cpu");
+        backend->setScene(std::move(s));
+        backend->setSettings(settings);
+        backend->renderFrame();
+        glm::dvec3 sum(0.0);
+        for (const Photon& p : backend->readPhotonMaps().photons[MAP_CAUSTIC]) {
+            sum += glm::dvec3(p.power);
+        }
+        return sum;
+    };
+    glm::dvec3 clear = causticPower(vec3(0.0f));
+    glm::dvec3 absorbed = causticPower(sigma);
+    ASSERT_GT(clear.x, 0.0);
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(absorbed[c] / clear[c], std::exp(-double(sigma[c]) * d), 2e-3) << "channel " << c;
     }
 }
 

@@ -2,9 +2,10 @@
 """Writes scenes/textured.glb: a glTF 2.0 scene that exercises what the glTF loader maps.
 
 A checkerboard floor and a brick-striped back wall (base-colour textures, embedded PNGs, sRGB,
-repeat and mirrored-repeat samplers), a textured box on a node hierarchy (translation, rotation,
-scale), a glass sphere (KHR_materials_transmission + KHR_materials_ior) that throws a caustic, a
-mirror-metal sphere, an emissive panel (an area light of emissive triangles), a perspective camera,
+repeat and mirrored-repeat samplers; the wall's mortar carved by a normal texture), a textured box
+on a node hierarchy (translation, rotation, scale) whose metallic-roughness texture makes its
+squares alternately rough paint and polished metal, a glass sphere (KHR_materials_transmission,
+_ior and _volume: a solid, tinted body) that throws a caustic, a mirror-metal sphere, an emissive panel (an area light of emissive triangles), a perspective camera,
 and KHR_lights_punctual: the sun (directional) and a spot. Python's standard library only: the
 PNGs are written with zlib, the binary chunk with struct.
 
@@ -27,6 +28,23 @@ def png(width, height, pixel):
 
     header = struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)
     return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(rows, 9)) + chunk(b"IEND", b"")
+
+
+def brick_normals(x, y):
+    """Tangent-space normals of the bricks: the mortar lines are grooves (their edges lean out)."""
+    row = y // 8
+    u = (x + (4 if row % 2 else 0)) % 16
+    v = y % 8
+    nx = -0.6 if u == 1 else (0.6 if u == 15 else 0.0)
+    ny = 0.6 if v == 1 else (-0.6 if v == 7 else 0.0)
+    length = math.sqrt(nx * nx + ny * ny + 1)
+    return tuple(int(round((c / length * 0.5 + 0.5) * 255)) for c in (nx, ny, 1.0))
+
+
+def metal_squares(x, y):
+    """Metallic-roughness texels: green roughness, blue metallic; polished metal on every other square."""
+    metal = (x // 8 + y // 8) % 2 == 1
+    return (0, 40, 255) if metal else (0, 230, 0)
 
 
 def checker(x, y):
@@ -169,14 +187,20 @@ def main():
     wall_tex = g.texture(png(64, 64, bricks), mirrored, repeat)
     floor = g.material({"name": "checker floor", "pbrMetallicRoughness": {
         "baseColorTexture": {"index": floor_tex}, "metallicFactor": 0, "roughnessFactor": 1}})
+    wall_normals = g.texture(png(64, 64, brick_normals), mirrored, repeat)
+    crate_mr = g.texture(png(64, 64, metal_squares), repeat, repeat)
     wall = g.material({"name": "brick wall", "pbrMetallicRoughness": {
-        "baseColorTexture": {"index": wall_tex}, "metallicFactor": 0, "roughnessFactor": 1}})
+        "baseColorTexture": {"index": wall_tex}, "metallicFactor": 0, "roughnessFactor": 1},
+        "normalTexture": {"index": wall_normals, "scale": 1.0}})
     crate = g.material({"name": "crate", "pbrMetallicRoughness": {
-        "baseColorTexture": {"index": floor_tex}, "baseColorFactor": [0.9, 0.75, 0.5, 1], "metallicFactor": 0,
-        "roughnessFactor": 0.8}})
-    glass = g.material({"name": "glass", "pbrMetallicRoughness": {"metallicFactor": 0, "roughnessFactor": 0},
+        "baseColorTexture": {"index": floor_tex}, "baseColorFactor": [0.9, 0.75, 0.5, 1], "metallicFactor": 1,
+        "roughnessFactor": 1, "metallicRoughnessTexture": {"index": crate_mr}}})
+    glass = g.material({"name": "glass", "pbrMetallicRoughness": {"metallicFactor": 0, "roughnessFactor": 0,
+                                                                  "baseColorFactor": [1, 1, 1, 1]},
                         "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1},
-                                       "KHR_materials_ior": {"ior": 1.5}}})
+                                       "KHR_materials_ior": {"ior": 1.5},
+                                       "KHR_materials_volume": {"thicknessFactor": 0.9, "attenuationDistance": 2.0,
+                                                                "attenuationColor": [0.85, 0.95, 1.0]}}})
     chrome = g.material({"name": "chrome", "pbrMetallicRoughness": {
         "baseColorFactor": [0.95, 0.93, 0.88, 1], "metallicFactor": 1, "roughnessFactor": 0}})
     panel = g.material({"name": "panel", "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0},
@@ -219,7 +243,7 @@ def main():
     nodes.append(g.node(name="camera", camera=0, translation=list(eye), rotation=q))
 
     g.gltf["extensionsUsed"] = ["KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior",
-                                "KHR_materials_emissive_strength"]
+                                "KHR_materials_emissive_strength", "KHR_materials_volume"]
     g.gltf["extensions"] = {"KHR_lights_punctual": {"lights": [
         {"name": "sun", "type": "directional", "color": [1, 0.95, 0.85], "intensity": 2000},
         {"name": "spot", "type": "spot", "color": [0.8, 0.9, 1], "intensity": 4000,
