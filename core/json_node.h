@@ -120,6 +120,13 @@ public:
         return static_cast<std::uint32_t>(x);
     }
 
+    bool boolean() const {
+        if (!value_.is_boolean()) {
+            fail(expected("true or false"));
+        }
+        return value_.get<bool>();
+    }
+
     const std::string& string() const {
         if (!value_.is_string()) {
             fail(expected("a string"));

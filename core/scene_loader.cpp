@@ -102,7 +102,32 @@ Material readSurface(const Node& node) {
         }
         return makeReflective(albedo, specular);
     }
-    node["type"].fail("unknown material type '" + type + "' (expected diffuse|mirror|glass|glossy|reflective)");
+    if (type == "pbr") {
+        // glTF's metallic-roughness model (shared/pbr.h), with transmission and a volume.
+        node.allowKeys({"type", "emission", "base_color", "metallic", "roughness", "transmission", "ior", "thin_walled",
+                        "attenuation_color", "attenuation_distance"});
+        Material m = makePbr(node["base_color"].rgb(kUnit), node.has("metallic") ? node["metallic"].number(kUnit) : 0.0f,
+                             node.has("roughness") ? node["roughness"].number(kUnit) : 0.5f);
+        if (node.has("transmission")) {
+            m.transmission = node["transmission"].number(kUnit);
+        }
+        if (node.has("ior")) {
+            m.ior = node["ior"].number({1.0, 10.0, false, false});
+        }
+        if (node.has("thin_walled") && node["thin_walled"].boolean()) {
+            m.flags |= MATERIAL_FLAG_THIN_WALLED;
+        }
+        if (node.has("attenuation_color") != node.has("attenuation_distance")) {
+            node.fail("attenuation_color and attenuation_distance come together");
+        }
+        if (node.has("attenuation_color")) {
+            glm::vec3 colour = node["attenuation_color"].rgb({0.0, 1.0, true, false});
+            float distance = node["attenuation_distance"].number(kPositive);
+            m.attenuation = -glm::log(colour) / distance;  // Beer–Lambert: σ = −ln(colour)/distance
+        }
+        return m;
+    }
+    node["type"].fail("unknown material type '" + type + "' (expected diffuse|mirror|glass|glossy|reflective|pbr)");
 }
 
 // Any material may also emit (radiance from its front): triangles and meshes of an emitting

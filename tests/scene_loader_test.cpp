@@ -107,6 +107,29 @@ TEST(SceneLoader, MaterialTypes) {
               "x.json: /materials/white: albedo + reflectance exceeds 1 in channel g: energy would be created");
 }
 
+TEST(SceneLoader, PbrMaterial) {
+    Scene scene = load(sceneWith("materials", R"({
+        "white": {"type": "diffuse", "albedo": [0.8, 0.8, 0.8]},
+        "gold": {"type": "pbr", "base_color": [1, 0.8, 0.3], "metallic": 1, "roughness": 0.4},
+        "green glass": {"type": "pbr", "base_color": [1, 1, 1], "roughness": 0, "transmission": 1, "ior": 1.52,
+                        "attenuation_color": [0.5, 1, 1], "attenuation_distance": 2}})"));
+    const Material& gold = scene.materials[scene.findMaterial("gold")];
+    EXPECT_EQ(gold.type, MATERIAL_PBR);
+    EXPECT_FLOAT_EQ(gold.metallic, 1.0f);
+    EXPECT_FLOAT_EQ(gold.roughness, 0.16f);  // α = roughness²
+    EXPECT_EQ(gold.albedoTexture, NONE);
+    const Material& glass = scene.materials[scene.findMaterial("green glass")];
+    EXPECT_FLOAT_EQ(glass.transmission, 1.0f);
+    EXPECT_FLOAT_EQ(glass.ior, 1.52f);
+    EXPECT_NEAR(glass.attenuation.x, std::log(2.0f) / 2.0f, 1e-6f);
+    EXPECT_FLOAT_EQ(glass.attenuation.y, 0.0f);
+    EXPECT_EQ(errorOf(sceneWith("materials", R"({"white": {"type": "pbr", "base_color": [1, 1, 1], "ior": 0.5}})")),
+              "x.json: /materials/white/ior: must be in [1, 10] (got 0.5)");
+    EXPECT_EQ(errorOf(sceneWith("materials", R"({"white": {"type": "pbr", "base_color": [1, 1, 1],
+                                                            "attenuation_color": [1, 1, 1]}})")),
+              "x.json: /materials/white: attenuation_color and attenuation_distance come together");
+}
+
 TEST(SceneLoader, QuadArea) {
     Scene scene = load(sceneWith("objects", R"([{"type": "quad", "corner": [0, 0, 0], "edge_u": [2, 0, 0],
                                                  "edge_v": [0, 0, 3], "material": "white"}])"));
