@@ -318,6 +318,9 @@ struct Loader {
                 m.attenuation[c] = float(-std::log(colour) / distance);  // Beer–Lambert: σ = −ln(c)/d
             }
         }
+        if (!g.doubleSided) {
+            m.flags |= MATERIAL_FLAG_SINGLE_SIDED;
+        }
         if (g.alphaMode == "MASK") {
             m.flags |= MATERIAL_FLAG_ALPHA_MASK;
             m.alphaCutoff = float(std::isfinite(g.alphaCutoff) ? std::max(g.alphaCutoff, 0.0) : 0.5);

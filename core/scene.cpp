@@ -447,10 +447,15 @@ void Scene::finalize() {
             }
         }
     }
-    // Triangles whose material cuts them out or blends them are tested for coverage by every ray.
+    // Triangles whose material cuts them out or blends them are tested for coverage by every ray;
+    // single-sided opaque ones have no back. (A transmissive surface keeps both sides whatever the
+    // file says: light that entered a glass body must be able to leave it.)
     for (Triangle& t : triangles) {
-        bool tested = (materials[t.material].flags & (MATERIAL_FLAG_ALPHA_MASK | MATERIAL_FLAG_ALPHA_BLEND)) != 0u;
-        t.flags = tested ? TRIANGLE_ALPHA_TESTED : 0u;
+        const Material& m = materials[t.material];
+        bool tested = (m.flags & (MATERIAL_FLAG_ALPHA_MASK | MATERIAL_FLAG_ALPHA_BLEND)) != 0u;
+        bool culled = (m.flags & MATERIAL_FLAG_SINGLE_SIDED) != 0u && !(m.type == MATERIAL_PBR && m.transmission > 0.0f) &&
+                      m.type != MATERIAL_GLASS;
+        t.flags = (tested ? TRIANGLE_ALPHA_TESTED : 0u) | (culled ? TRIANGLE_BACK_CULLED : 0u);
     }
     // Bounds of everything finite (lights' own positions included).
     glm::vec3 lo(FLOAT_MAX);

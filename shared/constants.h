@@ -31,9 +31,11 @@ PH_CONST uint MATERIAL_FLAG_ALPHA_MASK = 1u;   // cut out where coverage α < al
 PH_CONST uint MATERIAL_FLAG_ALPHA_BLEND = 2u;  // present with probability α (glTF BLEND, stochastically)
 PH_CONST uint MATERIAL_FLAG_THIN_WALLED = 4u;  // pbr transmission passes straight through (no volume)
 PH_CONST uint MATERIAL_FLAG_STORED_PART = 8u;  // pbr: only the lobes density estimates see (storedPart)
+PH_CONST uint MATERIAL_FLAG_SINGLE_SIDED = 16u;  // seen from its front only (glTF doubleSided false)
 
 // Triangle::flags bits.
 PH_CONST uint TRIANGLE_ALPHA_TESTED = 1u;      // its material's coverage decides whether a ray hits
+PH_CONST uint TRIANGLE_BACK_CULLED = 2u;       // rays pass through its back (a single-sided opaque material)
 
 // Light types (Light::type).
 PH_CONST uint LIGHT_POINT = 0u;

@@ -196,8 +196,13 @@ PH_FN float intersectPrimitive(BUF_PARAM uint ref, PH_IN(Ray) ray, PH_IN(RayFram
     }
     Triangle tri = BUF(triangles)[index];
     float t = intersectTriangle(frame, tri, tMax, b1, b2);
-    if (t < tMax && (tri.flags & TRIANGLE_ALPHA_TESTED) != 0u && !coverageHolds(BUF_ARG tri, b1, b2, ray.direction)) {
-        return tMax;  // cut out (alpha mask) or, this time, seen through (alpha blend)
+    if (t < tMax && tri.flags != 0u) {
+        if ((tri.flags & TRIANGLE_BACK_CULLED) != 0u && dot(ray.direction, cross(tri.v1 - tri.v0, tri.v2 - tri.v0)) > 0.0f) {
+            return tMax;  // its back, which a single-sided surface does not have
+        }
+        if ((tri.flags & TRIANGLE_ALPHA_TESTED) != 0u && !coverageHolds(BUF_ARG tri, b1, b2, ray.direction)) {
+            return tMax;  // cut out (alpha mask) or, this time, seen through (alpha blend)
+        }
     }
     return t;
 }

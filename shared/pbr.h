@@ -33,6 +33,17 @@ PH_FN float schlickWeight(float cosTheta) {
     return x2 * x2 * x;
 }
 
+// Schlick's Fresnel F0 + (1 − F0)·w, a lerp that stays uncontracted (portable.h).
+PH_FN float schlick(float f0, float w) {
+    PH_PRECISE float f = f0 + (1.0f - f0) * w;
+    return f;
+}
+
+PH_FN vec3 schlickColour(vec3 f0, float w) {
+    PH_PRECISE vec3 f = f0 + (vec3(1.0f) - f0) * w;
+    return f;
+}
+
 // Normal-incidence reflectance of a dielectric of index ior in air (0.04 at 1.5).
 PH_FN float dielectricF0(float ior) {
     float r = (ior - 1.0f) / (ior + 1.0f);
@@ -51,14 +62,13 @@ struct PbrLobes {
 
 PH_FN PbrLobes pbrLobes(PH_IN(Material) m, float cosO, uint subset) {
     float fw = schlickWeight(cosO);
-    float f0 = dielectricF0(m.ior);
-    float fresnel = f0 + (1.0f - f0) * fw;
+    float fresnel = schlick(dielectricF0(m.ior), fw);
     float dielectric = 1.0f - m.metallic;
     float opaque = dielectric * (1.0f - m.transmission);
     PbrLobes w;
     w.diffuse = opaque * (1.0f - fresnel) * meanOf(m.albedo);
     w.specular = opaque * fresnel;
-    w.metal = m.metallic * meanOf(m.albedo + (vec3(1.0f) - m.albedo) * fw);
+    w.metal = m.metallic * meanOf(schlickColour(m.albedo, fw));
     w.transmission = dielectric * m.transmission;
     bool specularTraced = m.roughness < PBR_TRACED_ALPHA;
     if (subset == PBR_LOBES_TRACED) {
@@ -94,21 +104,20 @@ PH_FN vec3 evalPbr(PH_IN(Material) m, vec3 wo, vec3 wi, vec3 n, float cosO, floa
     vec3 h = unitVector(wi + wo);
     float voh = dot(wo, h);
     float fw = schlickWeight(voh);
-    float f0 = dielectricF0(m.ior);
-    float fresnel = f0 + (1.0f - f0) * fw;
+    float fresnel = schlick(dielectricF0(m.ior), fw);
     float dielectric = 1.0f - m.metallic;
     float opaque = dielectric * (1.0f - m.transmission);
-    vec3 f = m.albedo * (opaque * (1.0f - f0 - (1.0f - f0) * schlickWeight(cosO)) * INV_PI);
+    PH_PRECISE vec3 f = m.albedo * (opaque * (1.0f - schlick(dielectricF0(m.ior), schlickWeight(cosO))) * INV_PI);
     bool stored = (m.flags & MATERIAL_FLAG_STORED_PART) != 0u;
     bool specularTraced = m.roughness < PBR_TRACED_ALPHA;
     if (m.roughness >= PBR_DELTA_ALPHA && !(stored && specularTraced)) {
         float a = m.roughness;
         float dVis = ggxD(dot(h, n), a) * ggxG1(cosO, a) * ggxG1(cosI, a) / (4.0f * cosO * cosI);
-        vec3 specular = vec3(opaque * fresnel) + (m.albedo + (vec3(1.0f) - m.albedo) * fw) * m.metallic;
+        PH_PRECISE vec3 specular = vec3(opaque * fresnel) + schlickColour(m.albedo, fw) * m.metallic;
         if (!stored) {
-            specular += vec3(dielectric * m.transmission * fresnelDielectric(voh, m.ior));
+            specular = specular + vec3(dielectric * m.transmission * fresnelDielectric(voh, m.ior));
         }
-        f += specular * dVis;
+        f = f + specular * dVis;
     }
     return f;
 }
@@ -128,9 +137,9 @@ PH_FN float pdfPbr(PH_IN(Material) m, vec3 wo, vec3 wi, vec3 n, uint subset) {
     vec3 h = unitVector(wi + wo);
     float cosH = dot(h, n);
     float voh = dot(wo, h);
-    float reflectance = w.specular + w.metal;
+    PH_PRECISE float reflectance = w.specular + w.metal;
     if (w.transmission > 0.0f) {
-        reflectance += w.transmission * fresnelDielectric(voh, m.ior);
+        reflectance = reflectance + w.transmission * fresnelDielectric(voh, m.ior);
     }
     float specular = voh > 0.0f ? ggxD(cosH, m.roughness) * cosH / (4.0f * voh) : 0.0f;
     return (w.diffuse * cosI * INV_PI + reflectance * specular) / total;
@@ -155,8 +164,7 @@ PH_FN BsdfSample samplePbr(PH_IN(Material) m, vec3 wo, vec3 nf, bool entering, u
     float opaque = (1.0f - m.metallic) * (1.0f - m.transmission);
     if (u < w.diffuse) {
         bs.direction = localToWorld(sampleCosineHemisphere(u1, u2), nf);
-        float f0 = dielectricF0(m.ior);
-        bs.weight = m.albedo * (opaque * (1.0f - f0 - (1.0f - f0) * schlickWeight(cosO)) * total / w.diffuse);
+        bs.weight = m.albedo * (opaque * (1.0f - schlick(dielectricF0(m.ior), schlickWeight(cosO))) * total / w.diffuse);
         bs.lobe = LOBE_DIFFUSE;
         return bs;
     }
@@ -178,10 +186,9 @@ PH_FN BsdfSample samplePbr(PH_IN(Material) m, vec3 wo, vec3 nf, bool entering, u
         float lobeWeight = ggxG1(cosO, a) * ggxG1(cosI, a) * voh / (cosO * cosH);
         float fw = schlickWeight(voh);
         if (u < w.diffuse + w.specular) {
-            float f0 = dielectricF0(m.ior);
-            bs.weight = vec3(opaque * (f0 + (1.0f - f0) * fw) * lobeWeight * total / w.specular);
+            bs.weight = vec3(opaque * schlick(dielectricF0(m.ior), fw) * lobeWeight * total / w.specular);
         } else {
-            bs.weight = (m.albedo + (vec3(1.0f) - m.albedo) * fw) * (m.metallic * lobeWeight * total / w.metal);
+            bs.weight = schlickColour(m.albedo, fw) * (m.metallic * lobeWeight * total / w.metal);
         }
         bs.direction = wi;
         bs.lobe = lobe;

@@ -405,8 +405,9 @@ TEST(GltfLoader, AlphaModesVolumeAndTextureTransform) {
     EXPECT_FLOAT_EQ(material(0).alphaCutoff, 0.25f);
     EXPECT_FLOAT_EQ(material(0).alpha, 0.5f);
     EXPECT_EQ(material(1).flags & MATERIAL_FLAG_ALPHA_BLEND, MATERIAL_FLAG_ALPHA_BLEND);
-    EXPECT_EQ(scene.triangles[0].flags, TRIANGLE_ALPHA_TESTED);
-    EXPECT_EQ(scene.triangles[1].flags, TRIANGLE_ALPHA_TESTED);
+    // Single-sided (doubleSided defaults to false) and opaque: culled from behind; the glass is not.
+    EXPECT_EQ(scene.triangles[0].flags, TRIANGLE_ALPHA_TESTED | TRIANGLE_BACK_CULLED);
+    EXPECT_EQ(scene.triangles[1].flags, TRIANGLE_ALPHA_TESTED | TRIANGLE_BACK_CULLED);
     EXPECT_EQ(scene.triangles[2].flags, 0u);
     EXPECT_EQ(material(2).flags & MATERIAL_FLAG_THIN_WALLED, 0u) << "a volume refracts";
     // σ = −ln(colour) / distance.

@@ -5,7 +5,8 @@
 //   χ²:           the sampled directions follow pdfPbr;
 //   transmission: a smooth white glass reflects and transmits everything (E = 1);
 //   coverage:     an alpha-masked surface is absent for rays where its texture's alpha is below
-//                 the cutoff, a blended one present in proportion to alpha;
+//                 the cutoff, a blended one present in proportion to alpha, a single-sided one
+//                 absent from behind;
 //   volume:       photons through an absorbing slab arrive with exp(−σd) of their power.
 #include <gtest/gtest.h>
 
@@ -215,6 +216,18 @@ TEST(Coverage, AlphaMaskCutsOutWhereTheTextureIsTransparent) {
     // The same square opaque: every ray hits.
     test::SceneBindings opaque(coverageScene(0u, 1.0f));
     EXPECT_TRUE(traceClosest(opaque.bindings, down(0.1f), hit));
+}
+
+TEST(Coverage, SingleSidedSurfacesHaveNoBack) {
+    test::SceneBindings sb(coverageScene(MATERIAL_FLAG_SINGLE_SIDED, 1.0f));
+    Hit hit;
+    EXPECT_TRUE(traceClosest(sb.bindings, makeRay(vec3(0.9f, 0.5f, 1.0f), vec3(0, 0, -1), FLOAT_MAX), hit)) << "its front";
+    EXPECT_FALSE(traceClosest(sb.bindings, makeRay(vec3(0.9f, 0.5f, -1.0f), vec3(0, 0, 1), FLOAT_MAX), hit)) << "its back";
+    Scene glass = coverageScene(MATERIAL_FLAG_SINGLE_SIDED, 1.0f);
+    glass.materials[0].transmission = 1.0f;
+    test::SceneBindings through(glass);
+    EXPECT_TRUE(traceClosest(through.bindings, makeRay(vec3(0.9f, 0.5f, -1.0f), vec3(0, 0, 1), FLOAT_MAX), hit))
+        << "a transmissive surface keeps its back";
 }
 
 TEST(Coverage, AlphaBlendIsPresentInProportionToAlpha) {
