@@ -267,7 +267,7 @@ TEST(SceneLoaderErrors, UnknownEnumValue) {
 
 TEST(SceneLoaderErrors, UnknownType) {
     EXPECT_EQ(errorOf(sceneWith("materials", R"({"gold": {"type": "metal"}})")),
-              "x.json: /materials/gold/type: unknown material type 'metal' (expected diffuse|mirror|glass|glossy|reflective)");
+              "x.json: /materials/gold/type: unknown material type 'metal' (expected diffuse|mirror|glass|glossy|reflective|pbr)");
     EXPECT_EQ(objectError(R"({"type": "cube", "material": "white"})"),
               "x.json: /objects/0/type: unknown object type 'cube' (expected sphere|plane|quad|triangle|box|mesh)");
 }
