@@ -119,12 +119,18 @@ int run(int argc, char** argv) {
     app.add_flag("--validation", backendOptions.validation, "Vulkan: validation layer on; any message fails");
     app.add_option("--output,-o", output, "Image file: .png (tone-mapped), .exr or .pfm (linear)");
     app.add_option("--stats", statsPath, "Write per-stage times and photon counts as JSON");
-    app.add_option("--time", seconds, "Render frames until this many seconds have passed (at most --frames if given)")
-        ->check(CLI::Range(0.001, 1e6));
+    std::string secondsText;
+    const Range kSeconds{0.001, 1e6};
+    app.add_option("--time", secondsText,
+                   "Render frames until this many seconds have passed (at most --frames if given; " +
+                       kSeconds.describe() + ")");
     app.add_flag("--quiet,-q", quiet, "Print nothing but errors");
     addRenderOptions(app, options);
     if (int code = parseCommandLine(app, argc, argv); code >= 0) {
         return code;
+    }
+    if (app.count("--time") > 0) {
+        seconds = parseNumber(secondsText, kSeconds, "--time");
     }
 
     Scene scene = app.count("scene") == 0 ? defaultScene() : loadSceneFile(scenePath);
