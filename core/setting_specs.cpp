@@ -272,7 +272,7 @@ void validateForScene(const RenderSettings& settings, const Scene& scene, const 
             double cell = size / double(settings.gridResolution);
             if (r > kBoundedGridReachCells * cell * (1.0 + 1e-6)) {
                 fail(what, "too large for the bounded grid, whose cells are " + formatNumber(cell) +
-                               " wide: at most 6 cells (raise --grid-resolution or use --grid hashed)");
+                               " wide: at most 6 cells (lower --grid-resolution for wider cells, or use --grid hashed)");
             }
         }
     }

@@ -53,6 +53,9 @@ EOF
 
 # 1. Inputs that crashed the bounded grid.
 expect 2 "--radius" "$render" "${small[@]}" --grid bounded --radius 1e39 -o "$tmp/a.png"
+# A radius wider than the bounded grid reaches needs wider cells: fewer of them (the message said
+# to raise the resolution).
+expect 2 "lower --grid-resolution" "$render" "${small[@]}" --grid bounded --grid-resolution 1024 --frames 3 -o "$tmp/a.png"
 expect 2 "--alpha" "$render" "${small[@]}" --grid bounded --alpha nan --estimator progressive --frames 3 -o "$tmp/a.png"
 python3 - "$scenes/cornell.json" "$tmp/far.json" <<'EOF'
 import json, sys
