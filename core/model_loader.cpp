@@ -67,12 +67,17 @@ ModelExtras addModelFile(Scene& scene, const std::string& path, const ModelOptio
 }
 
 Scene loadModelScene(const std::string& path) {
+    FileReader read = defaultFileReader();
+    return loadModelScene(path, read(path, "model file"), read);
+}
+
+Scene loadModelScene(const std::string& path, const std::string& bytes, const FileReader& read) {
     Scene scene;
     std::size_t slash = path.find_last_of('/');
     scene.name = slash == std::string::npos ? path : path.substr(slash + 1);
     ModelOptions options;
     options.cameraAndLights = true;
-    ModelExtras extras = addModelFile(scene, path, options);
+    ModelExtras extras = addModel(scene, path, bytes, options, read);
     // The camera, if the file has none, frames the bounds: from the front, a little above, the
     // bounding sphere filling the vertical field of view.
     scene.finalize();
