@@ -69,16 +69,18 @@ for signal in INT TERM; do
   ls -A "$tmp" | grep -q '^\.one' && fail "SIG$signal: a temporary file was left"
 done
 
-# 2. Two signals: the process ends at once, in the middle of a slow frame (final gathering with
-#    many rays), and nothing is written.
+# 2. Two signals: the process ends at once, in the middle of one frame that would take minutes
+#    (final gathering with 1024 rays a pixel; the signals must not straddle a frame's end), and
+#    nothing is written.
 out=$tmp/two.pfm
-"$render" --backend cpu --width 320 --height 240 --photons 100000 --estimator radius --global final-gather \
-  --gather-rays 256 --time 100 -q -o "$out" --stats "$tmp/two.json" 2>"$tmp/err" &
+"$render" --backend cpu --width 640 --height 480 --photons 100000 --estimator radius --global final-gather \
+  --gather-rays 1024 --frames 1 -q -o "$out" --stats "$tmp/two.json" 2>"$tmp/err" &
 pid=$!
 pids+=("$pid")
 settle
 kill -INT "$pid"
-sleep 0.2
+# Apart, or the kernel merges them into one pending signal.
+sleep 0.1
 kill -INT "$pid"
 finish "$pid" 5
 if [ "$code" -ne 130 ]; then
@@ -112,6 +114,24 @@ elif ls -A "$tmp" | grep -q '^\.big'; then
   fail "two SIGINTs around the write: a temporary file was left"
 else
   echo "ok: two SIGINTs around a write: exit 130, the image $([ -e "$out" ] && echo whole || echo absent), no temporary file"
+fi
+
+# 4. On a terminal, the progress line ends before the message, which starts a line of its own.
+if command -v script >/dev/null 2>&1; then
+  script -qec "timeout -s INT 1.5 $render --backend cpu --width 64 --height 48 --photons 20000 --time 100 -o $tmp/tty.png" \
+    /dev/null >"$tmp/tty.txt"
+  if python3 - "$tmp/tty.txt" <<'EOF'
+import sys
+lines = open(sys.argv[1], 'rb').read().decode('utf-8', 'replace').split('\n')
+sys.exit(0 if any(l.startswith('photon-render: interrupted: stopped after') for l in lines) else 1)
+EOF
+  then
+    echo "ok: on a terminal, the message has a line of its own"
+  else
+    fail "on a terminal, the message is not on a line of its own: $(cat -v "$tmp/tty.txt" | tail -c 300)"
+  fi
+else
+  echo "skip: no script(1) for a terminal"
 fi
 
 [ "$failures" -eq 0 ] && echo "all interrupt checks passed"
