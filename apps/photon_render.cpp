@@ -3,9 +3,12 @@
 //   photon-render [scene.json] --backend auto|cpu|cuda|vulkan --width W --height H --photons N
 //                 --frames F | --time SECONDS --estimator ... --output FILE --stats FILE
 //
-// Exit codes: 0 success, 2 bad input (scene, options), 1 runtime failure (e.g. no such backend).
+// Exit codes: 0 success, 2 bad input (scene, options), 1 runtime failure (e.g. no such backend),
+// 128 + the signal after SIGINT or SIGTERM (130 for Ctrl-C): the first finishes the frame in
+// flight and writes the image so far, a second ends the process at once (apps/interrupt.h).
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -14,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/backends.h"
+#include "apps/interrupt.h"
 #include "apps/program.h"
 #include "apps/progress.h"
 #include "apps/render_options.h"
@@ -98,6 +102,7 @@ void writeStats(const std::string& path, Backend& backend, const std::vector<Sta
 }
 
 int run(int argc, char** argv) {
+    installInterruptHandlers();
     CLI::App app{"Photon: renders a scene with photon mapping", "photon-render"};
     std::string scenePath;
     std::string backendName = "auto";
@@ -114,12 +119,18 @@ int run(int argc, char** argv) {
     app.add_flag("--validation", backendOptions.validation, "Vulkan: validation layer on; any message fails");
     app.add_option("--output,-o", output, "Image file: .png (tone-mapped), .exr or .pfm (linear)");
     app.add_option("--stats", statsPath, "Write per-stage times and photon counts as JSON");
-    app.add_option("--time", seconds, "Render frames until this many seconds have passed (at most --frames if given)")
-        ->check(CLI::Range(0.001, 1e6));
+    std::string secondsText;
+    const Range kSeconds{0.001, 1e6};
+    app.add_option("--time", secondsText,
+                   "Render frames until this many seconds have passed (at most --frames if given; " +
+                       kSeconds.describe() + ")");
     app.add_flag("--quiet,-q", quiet, "Print nothing but errors");
     addRenderOptions(app, options);
     if (int code = parseCommandLine(app, argc, argv); code >= 0) {
         return code;
+    }
+    if (app.count("--time") > 0) {
+        seconds = parseNumber(secondsText, kSeconds, "--time");
     }
 
     Scene scene = app.count("scene") == 0 ? defaultScene() : loadSceneFile(scenePath);
@@ -161,17 +172,25 @@ int run(int argc, char** argv) {
         times.push_back(backend->lastFrameStats().ms);
         elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         progress.update(f + 1, elapsed);
-        if (timed && elapsed >= seconds) {
+        if ((timed && elapsed >= seconds) || interruptSignal() != 0) {
             break;
         }
     }
     progress.finish();
+    // Interrupted: what was rendered is written as it would have been at the end.
+    int interrupted = interruptSignal();
     std::uint32_t frames = static_cast<std::uint32_t>(times.size());
     Image image = backend->image();
     double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     writeImage(output, image, settings.exposure, settings.tonemap);
     if (!statsPath.empty()) {
         writeStats(statsPath, *backend, times, wall);
+    }
+    if (interrupted != 0) {
+        std::fprintf(stderr, "photon-render: %s: stopped after %u frame%s; the image so far is in %s%s%s\n",
+                     interrupted == SIGINT ? "interrupted" : "terminated", frames, frames == 1 ? "" : "s",
+                     printable(output).c_str(), statsPath.empty() ? "" : ", the stats in ", printable(statsPath).c_str());
+        return 128 + interrupted;
     }
     if (!quiet) {
         const FrameStats& last = backend->lastFrameStats();

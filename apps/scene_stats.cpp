@@ -16,6 +16,9 @@ nlohmann::json sceneStatsJson(const Scene& scene) {
     j["texels"] = scene.texels.size();
     j["lights"] = scene.lights.size();
     j["caustic_targets"] = scene.targets.size();
+    // Of everything finite (Scene::finalize): what a tool needs to frame the scene.
+    j["bounds"] = {{"min", {scene.boundsMin.x, scene.boundsMin.y, scene.boundsMin.z}},
+                   {"max", {scene.boundsMax.x, scene.boundsMax.y, scene.boundsMax.z}}};
     j["bvh"] = {{"primitives", scene.bvh.primitives},
                 {"nodes", scene.bvh.nodes},
                 {"leaves", scene.bvh.leaves},

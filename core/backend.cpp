@@ -158,9 +158,12 @@ bool Backend::endFrame(const FrameResult& result, bool mayRepeat) {
         warnedDropped_ = true;
     }
     if (settings_.estimator == Estimator::Sppm) {
-        // The next frame's cells follow the median radius of the pixels that have photons.
+        // The next frame's cells follow the median radius of the pixels that have photons, and
+        // the largest (footprints.h: sppmCellRadius).
         for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
-            float r = sppmCellRadius(result.counters + COUNTER_SPPM_HISTOGRAM + m * SPPM_RADIUS_BINS);
+            float largest;
+            std::memcpy(&largest, &result.counters[COUNTER_SPPM_RADIUS_GLOBAL + m], sizeof largest);
+            float r = sppmCellRadius(result.counters + COUNTER_SPPM_HISTOGRAM + m * SPPM_RADIUS_BINS, largest);
             if (r > 0.0f) {
                 radii_.radius[m] = r;
             }

@@ -87,7 +87,20 @@ FrameRadii firstFrameRadii(const Scene& scene, const RenderSettings& settings, c
     return r;
 }
 
-float sppmCellRadius(const std::uint32_t* histogram) {
+float sppmCellRadius(const std::uint32_t* histogram, float largest) {
+    float median = sppmMedianRadius(histogram);
+    if (median == 0.0f) {
+        return 0.0f;
+    }
+    // A pixel's radius (finite: the counter holds float bits of one) reaches at most
+    // kSppmCellReach cells from its centre.
+    if (std::isfinite(largest) && largest > 0.0f) {
+        median = std::max(median, largest / kSppmCellReach);
+    }
+    return median;
+}
+
+float sppmMedianRadius(const std::uint32_t* histogram) {
     std::uint64_t total = 0;
     for (std::uint32_t b = 0; b < SPPM_RADIUS_BINS; ++b) {
         total += histogram[b];

@@ -49,7 +49,14 @@ FrameRadii firstFrameRadii(const Scene& scene, const RenderSettings& settings, c
                            const PhotonBudget& budget);
 
 // sppm: the radius the next frame's cells follow, the median of the pixels that have photons
-// (the upper end of its bin of COUNTER_SPPM_HISTOGRAM); 0 if no pixel has any.
-float sppmCellRadius(const std::uint32_t* histogram);
+// (the upper end of its bin of COUNTER_SPPM_HISTOGRAM), but at least 1/kSppmCellReach of the
+// largest radius of a pixel with photons (COUNTER_SPPM_RADIUS_*), so that no query visits more
+// than about (2.5 kSppmCellReach + 1)³ cells, whatever the radii: the histogram's bins end at
+// 2^±32, and --radius 1e12 once made every query of a 64×48 image walk 233³ cells of the median.
+// 0 if no pixel has photons.
+inline constexpr float kSppmCellReach = 8.0f;
+float sppmCellRadius(const std::uint32_t* histogram, float largest);
+// The median alone.
+float sppmMedianRadius(const std::uint32_t* histogram);
 
 }  // namespace photon

@@ -40,13 +40,25 @@ bool isModelFile(const std::string& path) {
 ModelExtras addModel(Scene& scene, const std::string& path, const std::string& bytes, const ModelOptions& options,
                      const FileReader& read) {
     std::string ext = lowerExtension(path);
+    std::size_t triangles = scene.triangles.size();
+    std::uint64_t dropped = scene.droppedTriangles;
+    ModelExtras extras;
     if (ext == "obj") {
-        return addObjModel(scene, path, bytes, options, read);
+        extras = addObjModel(scene, path, bytes, options, read);
+    } else if (ext == "gltf" || ext == "glb") {
+        extras = addGltfModel(scene, path, bytes, options, read);
+    } else {
+        throw InputError(path + ": not a model file Photon reads (.obj, .gltf, .glb)");
     }
-    if (ext == "gltf" || ext == "glb") {
-        return addGltfModel(scene, path, bytes, options, read);
+    // A model that brings nothing to render is an error, not a black image (or, in a scene of
+    // nothing else, an automatic radius of 0): whatever the loader says about why.
+    if (scene.triangles.size() == triangles) {
+        std::uint64_t lost = scene.droppedTriangles - dropped;
+        throw InputError(path + (lost > 0 ? ": no triangle to render: all " + std::to_string(lost) +
+                                                " have no area or a vertex that is not finite"
+                                          : std::string(": no triangles to render")));
     }
-    throw InputError(path + ": not a model file Photon reads (.obj, .gltf, .glb)");
+    return extras;
 }
 
 ModelExtras addModelFile(Scene& scene, const std::string& path, const ModelOptions& options) {
@@ -55,12 +67,17 @@ ModelExtras addModelFile(Scene& scene, const std::string& path, const ModelOptio
 }
 
 Scene loadModelScene(const std::string& path) {
+    FileReader read = defaultFileReader();
+    return loadModelScene(path, read(path, "model file"), read);
+}
+
+Scene loadModelScene(const std::string& path, const std::string& bytes, const FileReader& read) {
     Scene scene;
     std::size_t slash = path.find_last_of('/');
     scene.name = slash == std::string::npos ? path : path.substr(slash + 1);
     ModelOptions options;
     options.cameraAndLights = true;
-    ModelExtras extras = addModelFile(scene, path, options);
+    ModelExtras extras = addModel(scene, path, bytes, options, read);
     // The camera, if the file has none, frames the bounds: from the front, a little above, the
     // bounding sphere filling the vertical field of view.
     scene.finalize();
@@ -76,11 +93,18 @@ Scene loadModelScene(const std::string& path) {
         scene.camera.up = glm::vec3(0.0f, 1.0f, 0.0f);
     }
     if (extras.lights == 0 && scene.lights.empty()) {
-        // The sun over the camera's left shoulder.
+        // The sun over the camera's left shoulder, and a dimmer one from the camera itself: the
+        // first alone lit the far side of flat models seen at an angle (the camera saw black),
+        // the second lights every face that faces the camera.
         glm::vec3 forward = glm::normalize(scene.camera.lookAt - scene.camera.position);
-        glm::vec3 right = glm::normalize(glm::cross(forward, scene.camera.up));
+        glm::vec3 side = glm::cross(forward, scene.camera.up);
+        if (!(glm::length(side) > 1e-6f)) {  // a glTF camera looking along its up vector
+            side = glm::cross(forward, std::abs(forward.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, 1));
+        }
+        glm::vec3 right = glm::normalize(side);
         glm::vec3 up = glm::cross(right, forward);
         scene.addDirectionalLight(glm::normalize(forward + 0.6f * right - 1.2f * up), glm::vec3(3.0f));
+        scene.addDirectionalLight(forward, glm::vec3(1.0f));
     }
     scene.finalize();
     return scene;

@@ -49,6 +49,8 @@ bool isModelFile(const std::string& path);
 // A model file as a whole scene: its glTF camera and lights if it has them, otherwise a camera
 // that frames its bounds and a light from above the camera's shoulder. Finalized.
 Scene loadModelScene(const std::string& path);
+// The same from the file's bytes, reading what it references through `read`.
+Scene loadModelScene(const std::string& path, const std::string& bytes, const FileReader& read);
 
 // The parts of the loaders, in obj_loader.cpp and gltf_loader.cpp.
 ModelExtras addObjModel(Scene& scene, const std::string& path, const std::string& text, const ModelOptions& options,

@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <climits>
 #include <cstdlib>
@@ -77,10 +78,47 @@ std::string checkedTarget(const std::string& path, const char* what) {
     return target;
 }
 
+// The temporary files that exist now, for removePendingOutput() in a signal handler: a few slots
+// of fixed buffers, each claimed and released through its lock-free state.
+enum SlotState : int { kFree, kFilling, kPending, kRemoving };
+struct PendingSlot {
+    std::atomic<int> state{kFree};
+    char path[PATH_MAX + 1] = {};
+};
+static_assert(std::atomic<int>::is_always_lock_free, "pending outputs are read in signal handlers");
+PendingSlot gPending[4];
+
+// The slot now holding `path`, or -1 if every slot is taken (the file is then not removed by a
+// signal, but still never renamed over the target unless whole).
+int registerPending(const std::string& path) {
+    if (path.size() > PATH_MAX) {
+        return -1;
+    }
+    for (int i = 0; i < 4; ++i) {
+        int expected = kFree;
+        if (gPending[i].state.compare_exchange_strong(expected, kFilling)) {
+            std::memcpy(gPending[i].path, path.c_str(), path.size() + 1);
+            gPending[i].state.store(kPending);
+            return i;
+        }
+    }
+    return -1;
+}
+
+void releasePending(int slot) {
+    if (slot < 0) {
+        return;
+    }
+    int expected = kPending;
+    // Fails only while a signal handler removes the file, just before the process ends.
+    gPending[slot].state.compare_exchange_strong(expected, kFree);
+}
+
 // A temporary file beside `target`, removed unless released.
 struct Temporary {
     std::string path;
     int fd = -1;
+    int slot = -1;
 
     explicit Temporary(const std::string& target) {
         std::string name = folderOf(target) + "/." + nameOf(target) + ".XXXXXX";
@@ -89,6 +127,7 @@ struct Temporary {
         fd = ::mkstemp(buffer.data());
         if (fd >= 0) {
             path = buffer.data();
+            slot = registerPending(path);
         }
     }
     ~Temporary() {
@@ -98,10 +137,20 @@ struct Temporary {
         if (!path.empty()) {
             ::unlink(path.c_str());
         }
+        releasePending(slot);
     }
 };
 
 }  // namespace
+
+void removePendingOutput() {
+    for (PendingSlot& slot : gPending) {
+        int expected = kPending;
+        if (slot.state.compare_exchange_strong(expected, kRemoving)) {
+            ::unlink(slot.path);
+        }
+    }
+}
 
 void checkOutputPath(const std::string& path, const char* what) {
     std::string target = checkedTarget(path, what);

@@ -17,4 +17,8 @@ void checkOutputPath(const std::string& path, const char* what);
 // (InputError for the problems checkOutputPath finds).
 void writeOutputFile(const std::string& path, const std::string& bytes, const char* what);
 
+// Removes the temporary files of the writes in progress (those whose rename has not happened),
+// for a signal handler that ends the process: async-signal-safe (atomics and unlink() only).
+void removePendingOutput();
+
 }  // namespace photon

@@ -223,7 +223,7 @@ glm::mat4 readTransform(const Node& node) {
 
 // A model file as an object: its path relative to the scene file, its file's materials or one of
 // the scene's, and a transform.
-void readMesh(Scene& scene, const Node& node, const std::string& folder) {
+void readMesh(Scene& scene, const Node& node, const std::string& folder, const FileReader& read) {
     node.allowKeys({"type", "file", "material", "transform"});
     ModelOptions options;
     if (node.has("material")) {
@@ -242,13 +242,13 @@ void readMesh(Scene& scene, const Node& node, const std::string& folder) {
     }
     std::string path = !name.empty() && name[0] == '/' ? name : folder + name;
     try {
-        addModelFile(scene, path, options);
+        addModel(scene, path, read(path, "model file"), options, read);
     } catch (const InputError& e) {
         file.fail(e.what());
     }
 }
 
-void readObject(Scene& scene, const Node& node, const std::string& folder) {
+void readObject(Scene& scene, const Node& node, const std::string& folder, const FileReader& read) {
     const std::string& type = node["type"].string();
     if (type == "sphere") {
         node.allowKeys({"type", "material", "center", "radius"});
@@ -282,7 +282,7 @@ void readObject(Scene& scene, const Node& node, const std::string& folder) {
         vertices.checkSpan(b - a, c - a, "degenerate triangle: the vertices are collinear or coincide");
         scene.addTriangle(a, b, c, material);
     } else if (type == "mesh") {
-        readMesh(scene, node, folder);
+        readMesh(scene, node, folder, read);
     } else if (type == "box") {
         node.allowKeys({"type", "material", "min", "max"});
         std::uint32_t material = nonEmittingMaterialOf(scene, node);
@@ -412,7 +412,8 @@ void readRender(const Node& node, RenderSettings& s) {
 
 }  // namespace
 
-Scene loadSceneJson(const std::string& text, const std::string& sourceName, const std::string& folder) {
+Scene loadSceneJson(const std::string& text, const std::string& sourceName, const std::string& folder,
+                    const FileReader& read) {
     const json document = parseJson(text, sourceName);
     const Node root(document, "", sourceName);
     root.allowKeys({"name", "camera", "background", "materials", "objects", "lights", "render"});
@@ -427,7 +428,7 @@ Scene loadSceneJson(const std::string& text, const std::string& sourceName, cons
     }
     readMaterials(scene, root["materials"]);
     for (const Node& object : root["objects"].elements()) {
-        readObject(scene, object, folder);
+        readObject(scene, object, folder, read);
     }
     readLights(scene, root["lights"]);
     if (root.has("render")) {
@@ -441,9 +442,9 @@ Scene loadSceneFile(const std::string& path) {
     if (isModelFile(path)) {
         return loadModelScene(path);
     }
-    return loadSceneJson(readInputFile(path, kSceneFileLimit, "scene file"), path, folderOf(path));
+    return loadSceneJson(readInputFile(path, kSceneFileLimit, "scene file"), path, folderOf(path), defaultFileReader());
 }
 
-Scene defaultScene() { return loadSceneJson(kEmbeddedCornellJson, "<embedded cornell.json>"); }
+Scene defaultScene() { return loadSceneJson(kEmbeddedCornellJson, "<embedded cornell.json>", "", defaultFileReader()); }
 
 }  // namespace photon

@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "model_loader.h"
 #include "scene.h"
 
 namespace photon {
@@ -13,8 +14,11 @@ namespace photon {
 Scene loadSceneFile(const std::string& path);
 
 // Same from text; sourceName is used in messages in place of the path, and model files of mesh
-// objects are found relative to `folder` (with its trailing '/', or "" for the working folder).
-Scene loadSceneJson(const std::string& text, const std::string& sourceName, const std::string& folder = "");
+// objects are found relative to `folder` (with its trailing '/', or "" for the working folder)
+// and read, with what they reference, through `read` (the files on disk by default; the fuzz
+// targets pass files held in memory).
+Scene loadSceneJson(const std::string& text, const std::string& sourceName, const std::string& folder = "",
+                    const FileReader& read = defaultFileReader());
 
 // The default scene: the Cornell box embedded in the binary.
 Scene defaultScene();

@@ -87,6 +87,16 @@ std::vector<SettingSpec> makeSpecs() {
     };
 }
 
+// Decimal numbers only: no "nan", "inf" or hexadecimal, nothing after the number (1e999 is
+// infinite, for the range checks to refuse).
+bool parseDecimal(const std::string& text, double& value) {
+    bool decimal = !text.empty() && text.find_first_not_of("0123456789+-.eE") == std::string::npos;
+    char* end = nullptr;
+    errno = 0;
+    value = decimal ? std::strtod(text.c_str(), &end) : 0.0;
+    return decimal && end == text.c_str() + text.size();
+}
+
 [[noreturn]] void fail(const std::string& where, const std::string& reason) { throw InputError(where + ": " + reason); }
 
 std::string expectation(const SettingSpec& spec) {
@@ -181,15 +191,22 @@ void setSetting(RenderSettings& settings, const SettingSpec& spec, const std::st
         markGiven(settings, spec);
         return;
     }
-    // Decimal numbers only: no "nan", "inf" or hexadecimal, nothing after the number.
-    bool decimal = !text.empty() && text.find_first_not_of("0123456789+-.eE") == std::string::npos;
-    char* end = nullptr;
-    errno = 0;
-    double value = decimal ? std::strtod(text.c_str(), &end) : 0.0;
-    if (!decimal || end != text.c_str() + text.size()) {
+    double value = 0.0;
+    if (!parseDecimal(text, value)) {
         fail(where, "must be " + expectation(spec) + " (got '" + text + "', not a number)");
     }
     store(settings, spec, value, text, where);
+}
+
+double parseNumber(const std::string& text, const Range& range, const std::string& where) {
+    double value = 0.0;
+    if (!parseDecimal(text, value)) {
+        fail(where, "must be a number " + range.describe() + " (got '" + text + "', not a number)");
+    }
+    if (!std::isfinite(value) || !range.contains(value)) {
+        fail(where, "must be a finite number " + range.describe() + " (got " + text + ")");
+    }
+    return value;
 }
 
 void setSettingNumber(RenderSettings& settings, const SettingSpec& spec, double value, const std::string& shown,
@@ -255,7 +272,7 @@ void validateForScene(const RenderSettings& settings, const Scene& scene, const 
             double cell = size / double(settings.gridResolution);
             if (r > kBoundedGridReachCells * cell * (1.0 + 1e-6)) {
                 fail(what, "too large for the bounded grid, whose cells are " + formatNumber(cell) +
-                               " wide: at most 6 cells (raise --grid-resolution or use --grid hashed)");
+                               " wide: at most 6 cells (lower --grid-resolution for wider cells, or use --grid hashed)");
             }
         }
     }

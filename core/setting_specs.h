@@ -56,6 +56,11 @@ void setSetting(RenderSettings& settings, const SettingSpec& spec, const std::st
 void setSettingNumber(RenderSettings& settings, const SettingSpec& spec, double value, const std::string& shown,
                       const std::string& where);
 
+// A number of the command line that is no render setting (photon-render's --time), parsed and
+// checked as the settings are: a finite decimal number within `range`, else InputError
+// "<where>: must be ...".
+double parseNumber(const std::string& text, const Range& range, const std::string& where);
+
 // Every setting in its range (values set directly, as the viewer's HUD does, are checked here);
 // throws InputError naming the first bad one by its flag.
 void validateSettings(const RenderSettings& settings);

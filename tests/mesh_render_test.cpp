@@ -8,8 +8,10 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 
 #include "apps/backends.h"
+#include "core/model_loader.h"
 #include "test_util.h"
 #include "tools/mesh_shapes.h"
 
@@ -24,6 +26,37 @@ double meshArea(const Scene& s) {
         area += 0.5 * double(glm::length(glm::cross(t.v1 - t.v0, t.v2 - t.v0)));
     }
     return area;
+}
+
+// A model file rendered by itself gets a camera and lights that show it, whichever way a flat
+// model faces: the sun over the camera's shoulder alone lit the far side of a square seen at an
+// angle (assimp's concave_polygon.obj and regr_3429812.obj rendered black).
+TEST(ModelScene, FlatModelsAreLitOnTheSideTheCameraSees) {
+    for (float nx : {1.0f, -1.0f}) {
+        std::string path = test::testOutputPath(nx > 0 ? "flat-x.obj" : "flat-minus-x.obj");
+        {
+            std::ofstream obj(path);
+            // A unit square in the plane x = 0, wound to face +x or -x (OBJ has no back faces,
+            // but the winding picks the geometric normal).
+            obj << "v 0 0 0\nv 0 1 0\nv 0 1 1\nv 0 0 1\n" << (nx > 0 ? "f 1 2 3 4\n" : "f 4 3 2 1\n");
+        }
+        Scene scene = loadModelScene(path);
+        RenderSettings s = scene.render;
+        s.width = 32;
+        s.height = 24;
+        s.photons = 5000;
+        s.view = View::Direct;
+        auto backend = createBackend("cpu");
+        backend->setScene(scene);
+        backend->setSettings(s);
+        backend->renderFrame();
+        Image image = backend->image();
+        std::size_t lit = 0;
+        for (const glm::vec4& p : image.pixels) {
+            lit += p.x > 0.0f ? 1u : 0u;
+        }
+        EXPECT_GT(lit, image.pixels.size() / 20) << path << ": the square seen at an angle covers about a tenth";
+    }
 }
 
 TEST(MeshFurnace, TessellatedSphereWithinOnePercentPlusItsTessellation) {

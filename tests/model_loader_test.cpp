@@ -274,6 +274,23 @@ TEST(ObjLoader, ZeroAreaTrianglesAreDroppedAndCounted) {
     EXPECT_EQ(scene.droppedTriangles, 2u);
 }
 
+// A model with nothing to render is refused, not rendered black (or, as a scene's only mesh, left
+// to an automatic radius of 0 with a message about --radius).
+TEST(ModelLoader, NoTrianglesToRenderIsAnError) {
+    EXPECT_EQ(errorOf("z.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\nf 1 1 2\n"),
+              "z.obj: no triangle to render: all 2 have no area or a vertex that is not finite");
+    Gltf points;
+    points.parts["meshes"] = R"([{"primitives": [{"attributes": {"POSITION": 0}, "mode": 0}]}])";
+    EXPECT_EQ(errorOf("p.gltf", points.text()), "p.gltf: no triangles to render");
+    Gltf noNodes;
+    noNodes.parts["scenes"] = R"([{"nodes": []}])";
+    EXPECT_EQ(errorOf("n.gltf", noNodes.text()), "n.gltf: no triangles to render");
+    // A second model may add nothing of its own either: each is judged by what it added.
+    Scene scene;
+    load(scene, "a.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    EXPECT_THROW(load(scene, "p.gltf", points.text()), InputError);
+}
+
 TEST(ObjLoader, BadFilesNameTheLineAndTheReason) {
     EXPECT_EQ(errorOf("b.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n"),
               "b.obj: line 4: vertex index '4' out of range (3 defined before this line)");

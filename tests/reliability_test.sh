@@ -53,6 +53,9 @@ EOF
 
 # 1. Inputs that crashed the bounded grid.
 expect 2 "--radius" "$render" "${small[@]}" --grid bounded --radius 1e39 -o "$tmp/a.png"
+# A radius wider than the bounded grid reaches needs wider cells: fewer of them (the message said
+# to raise the resolution).
+expect 2 "lower --grid-resolution" "$render" "${small[@]}" --grid bounded --grid-resolution 1024 --frames 3 -o "$tmp/a.png"
 expect 2 "--alpha" "$render" "${small[@]}" --grid bounded --alpha nan --estimator progressive --frames 3 -o "$tmp/a.png"
 python3 - "$scenes/cornell.json" "$tmp/far.json" <<'EOF'
 import json, sys
@@ -97,6 +100,41 @@ for option in "--radius 1e-45" "--alpha nan" "--cell-size nan" "--radius nan" "-
 done
 expect 2 "omit it" "$render" "${small[@]}" --radius 0 -o "$tmp/a.png"
 [ "$(wc -c <"$tmp/err")" -lt 200 ] || fail "--radius 0: a message of $(wc -c <"$tmp/err") bytes"
+
+# 4b. No accepted value hangs a render (issue 16): each is refused with one line naming the option,
+#     or a 64x48 render (sppm over 3 frames, where the cells follow the radii of the frame before)
+#     finishes with a finite image. --radius 1e12 once took 100 s here and 1e15 never ended (the
+#     sppm cells followed the radius histogram, whose bins end at 2^32); --time nan rendered forever.
+judge() {
+  local option=$1 got=$2
+  if [ "$got" -eq 2 ] && [ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -qF -- "${option%% *}" "$tmp/err"; then
+    echo "ok: refused: $option: $(cat "$tmp/err")"
+  elif [ "$got" -eq 0 ] && finite_pfm "$tmp/h.pfm"; then
+    echo "ok: rendered: $option"
+  else
+    fail "$option: exit $got (124: the 60 s timeout)"; cat "$tmp/err"
+  fi
+}
+for option in "--time nan" "--time inf" "--time -1" "--time 1e400" "--radius nan" "--radius 1e12" "--radius 1e15" \
+              "--radius 1e-15" "--caustic-radius 1e15" "--caustic-radius 1e-15" "--caustic-radius nan" \
+              "--alpha nan" "--cell-size 64" "--frames nan" "--photons inf" "--k nan" "--exposure 1e400"; do
+  for estimator in sppm radius knn progressive cell; do
+    rm -f "$tmp/h.pfm"
+    # shellcheck disable=SC2086
+    timeout 60 "$render" --backend cpu --width 64 --height 48 --photons 20000 --frames 3 --estimator "$estimator" \
+      $option -q -o "$tmp/h.pfm" >"$tmp/out" 2>"$tmp/err"
+    judge "$option ($estimator)" $?
+  done
+done
+# knn visited every photon within its radius: with one as wide as the scene (or so small that all
+# photons share the grid's clamped border cells) a 640x480 frame of 1M photons took 2 minutes (now seconds).
+for option in "--radius 1e15" "--radius 1e-15"; do
+  rm -f "$tmp/h.pfm"
+  # shellcheck disable=SC2086
+  timeout 60 "$render" --backend cpu --width 640 --height 480 --photons 1000000 --frames 1 --estimator knn $option -q \
+    -o "$tmp/h.pfm" >"$tmp/out" 2>"$tmp/err"
+  judge "$option (knn, 1M photons)" $?
+done
 
 # 5. No hangs: device files and FIFOs are refused at once.
 expect 2 "character device" "$render" /dev/zero "${small[@]}" -o "$tmp/a.png"

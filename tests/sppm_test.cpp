@@ -4,7 +4,9 @@
 // the reference's, an object far outside the view changes nothing, and a seed repeats exactly.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 
 #include "apps/backends.h"
@@ -162,6 +164,37 @@ TEST(AutomaticRadius, FollowsThePixelFootprint) {
     s.radius = 0.07f;
     EXPECT_FLOAT_EQ(firstFrameRadii(scene, s, measureFootprints(scene, scene.camera, s), planPhotons(scene, s)).radius[MAP_GLOBAL], 0.07f)
         << "a given radius overrides";
+}
+
+// The cells of the next frame follow the largest radius too, not only the median, whose histogram
+// ends at 2^32: with --radius 1e12 every pixel's query walked 233³ cells of 2^32 (a 64×48 render
+// took 100 s; 1e15 never ended).
+TEST(SppmCells, FollowTheLargestRadius) {
+    for (float radius : {1e12f, 1e15f}) {
+        Scene scene = defaultScene();
+        RenderSettings s = scene.render;
+        s.width = 64;
+        s.height = 48;
+        s.photons = 20000;
+        s.estimator = Estimator::Sppm;
+        s.radius = radius;
+        auto backend = createBackend("cpu");
+        backend->setScene(scene);
+        backend->setSettings(s);
+        backend->renderFrame();
+        // The second frame's grids, as it would run (not run: the old cells made it hang).
+        const FrameParams& next = backend->beginFrame();
+        // A frame shrinks a pixel's radius by √α at most (R'² = R²(N + αM)/(N + M)).
+        EXPECT_GE(next.grids[MAP_GLOBAL].cellSize, 0.999f * radius * std::sqrt(s.alpha) / kSppmCellReach) << radius;
+        EXPECT_TRUE(std::isfinite(next.grids[MAP_GLOBAL].cellSize));
+    }
+    std::uint32_t histogram[SPPM_RADIUS_BINS] = {};
+    histogram[SPPM_RADIUS_BINS / 2] = 10;  // radii in [1, 2)
+    EXPECT_FLOAT_EQ(sppmCellRadius(histogram, 1.5f), 2.0f) << "the median's bin, when it holds the largest";
+    EXPECT_FLOAT_EQ(sppmCellRadius(histogram, 64.0f), 64.0f / kSppmCellReach);
+    EXPECT_FLOAT_EQ(sppmCellRadius(histogram, std::numeric_limits<float>::infinity()), 2.0f);
+    std::uint32_t none[SPPM_RADIUS_BINS] = {};
+    EXPECT_EQ(sppmCellRadius(none, 64.0f), 0.0f) << "no pixel has photons";
 }
 
 TEST(SppmSettings, FinalGatherIsRefused) {

@@ -4,9 +4,12 @@
 // be refused with InputError or give an image whose every value is finite. Anything else (another
 // exception, a crash, a sanitizer report, a NaN, a hang) is a bug.
 //
-// Input: scene JSON, a NUL byte, then the bytes that choose the settings. An input that starts
+// Input: scene JSON (optionally followed by the files its mesh objects read, after a line
+// "#--- name" each: companions.h), a NUL byte, then the bytes that choose the settings. An input that starts
 // with a NUL builds its scene from those bytes instead: random objects, materials and lights, their
-// numbers mostly ordinary and sometimes extreme, written as a scene file for the loader to check.
+// numbers mostly ordinary and sometimes extreme, written as a scene file for the loader to check,
+// and mesh objects of generated OBJ files (held in memory) with texture coordinates, normals and
+// MTL materials with a base-colour texture, so that what the model loaders produce is shaded too.
 #include <fuzzer/FuzzedDataProvider.h>
 
 #include <cmath>
@@ -16,11 +19,12 @@
 #include <cstdio>
 #include <string>
 
+#include "companions.h"
 #include "core/error.h"
-#include "core/image.h"
+#include "core/model_loader.h"
 #include "core/scene_loader.h"
 #include "core/setting_specs.h"
-#include "cpu/cpu_backend.h"
+#include "render_check.h"
 
 namespace {
 
@@ -65,7 +69,106 @@ std::string colourFrom(FuzzedDataProvider& data) {
     return "[" + c[0] + ", " + c[1] + ", " + c[2] + "]";
 }
 
-std::string generatedScene(FuzzedDataProvider& data) {
+// Files the scene's meshes read (OBJ, MTL, image), by name.
+using Files = photon::fuzz::Companions;
+
+// Texture coordinates: mostly within a few repeats, sometimes extreme (a texture lookup must hold
+// any finite value).
+std::string texcoordFrom(FuzzedDataProvider& data) {
+    if (data.ConsumeIntegralInRange(0, 7) == 0) {
+        const char* extremes[] = {"0", "1", "-1e-45", "1e30", "-1e30", "3.4e38", "0.9999999", "-0.5"};
+        return extremes[data.ConsumeIntegralInRange(0, 7)];
+    }
+    return photon::formatNumber(data.ConsumeFloatingPointInRange(-2.0, 3.0));
+}
+
+// An OBJ of a few faces with texture coordinates (and sometimes normals) and its MTL, whose
+// material may have a base-colour texture: a binary PPM of up to 4×4 texels (or bytes that are
+// not one). Returns the OBJ's name.
+std::string generatedObj(FuzzedDataProvider& data, Files& files, int index) {
+    std::string name = "m" + std::to_string(index) + ".obj";
+    std::string obj;
+    bool material = data.ConsumeBool();
+    if (material) {
+        std::string mtl = "newmtl t\nKd";
+        for (int c = 0; c < 3; ++c) {
+            mtl += " " + photon::formatNumber(data.ConsumeIntegralInRange(0, 10) / 10.0);
+        }
+        mtl += "\n";
+        switch (data.ConsumeIntegralInRange(0, 3)) {
+            case 0: mtl += "Ks 0.5 0.5 0.5\nNs " + photon::formatNumber(data.ConsumeFloatingPointInRange(0.0, 1000.0)) + "\n"; break;
+            case 1: mtl += "d 0.2\nNi " + photon::formatNumber(data.ConsumeFloatingPointInRange(0.5, 3.0)) + "\n"; break;
+            case 2: mtl += "Ke 1 1 1\n"; break;
+            default: break;
+        }
+        if (data.ConsumeIntegralInRange(0, 3) != 0) {
+            std::string image = "t" + std::to_string(index) + ".ppm";
+            mtl += "map_Kd " + image + "\n";
+            int w = data.ConsumeIntegralInRange(1, 4);
+            int h = data.ConsumeIntegralInRange(1, 4);
+            std::string ppm = "P6\n" + std::to_string(w) + " " + std::to_string(h) + "\n255\n";
+            for (int i = 0; i < 3 * w * h; ++i) {
+                ppm += char(data.ConsumeIntegral<std::uint8_t>());
+            }
+            if (data.ConsumeIntegralInRange(0, 9) == 0) {
+                ppm.resize(ppm.size() / 2);  // truncated
+            }
+            files[image] = ppm;
+        }
+        std::string mtlName = "m" + std::to_string(index) + ".mtl";
+        files[mtlName] = mtl;
+        obj += "mtllib " + mtlName + "\nusemtl t\n";
+    }
+    // Vertices about a circle and texture coordinates about the unit square, moved by a byte each,
+    // so that short inputs still make faces with area; some are anything at all.
+    int vertices = data.ConsumeIntegralInRange(3, 8);
+    for (int i = 0; i < vertices; ++i) {
+        double angle = 6.283185307179586 * i / vertices;
+        auto near = [&](double base) { return photon::formatNumber(base + data.ConsumeIntegral<std::int8_t>() / 64.0); };
+        if (data.ConsumeIntegralInRange(0, 7) == 0) {
+            std::string x = numberFrom(data);
+            std::string y = numberFrom(data);
+            obj += "v " + x + " " + y + " " + numberFrom(data) + "\n";
+        } else {
+            std::string x = near(std::cos(angle));
+            std::string y = near(std::sin(angle));
+            obj += "v " + x + " " + y + " " + near(0.0) + "\n";
+        }
+        if (data.ConsumeIntegralInRange(0, 7) == 0) {
+            std::string u = texcoordFrom(data);
+            obj += "vt " + u + " " + texcoordFrom(data) + "\n";
+        } else {
+            std::string u = near(0.5 + 0.5 * std::cos(angle));
+            obj += "vt " + u + " " + near(0.5 + 0.5 * std::sin(angle)) + "\n";
+        }
+    }
+    bool normals = data.ConsumeBool();
+    if (normals) {
+        for (int i = 0; i < vertices; ++i) {
+            std::string x = numberFrom(data);
+            std::string y = numberFrom(data);
+            obj += "vn " + x + " " + y + " " + numberFrom(data) + "\n";
+        }
+    }
+    int faces = data.ConsumeIntegralInRange(1, 6);
+    for (int f = 0; f < faces; ++f) {
+        obj += "f";
+        int corners = data.ConsumeIntegralInRange(3, 4);
+        // Mostly distinct corners (random ones are often degenerate, and the mesh then refused).
+        bool distinct = data.ConsumeIntegralInRange(0, 3) != 0;
+        int first = data.ConsumeIntegralInRange(0, vertices - 1);
+        for (int c = 0; c < corners; ++c) {
+            std::string v = std::to_string(distinct ? (first + c) % vertices + 1 : data.ConsumeIntegralInRange(1, vertices));
+            obj += " " + v + "/" + std::to_string(data.ConsumeIntegralInRange(1, vertices)) +
+                   (normals ? "/" + std::to_string(data.ConsumeIntegralInRange(1, vertices)) : std::string());
+        }
+        obj += "\n";
+    }
+    files[name] = obj;
+    return name;
+}
+
+std::string generatedScene(FuzzedDataProvider& data, Files& files) {
     std::string text = "{\"camera\": {\"position\": " + vec3From(data) + ", \"look_at\": " + vec3From(data) +
                        ", \"fov\": " + photon::formatNumber(data.ConsumeFloatingPointInRange(1.0, 170.0)) + "},";
     const char* materials[] = {R"("m0": {"type": "diffuse", "albedo": ALBEDO})", R"("m1": {"type": "mirror"})",
@@ -89,7 +192,20 @@ std::string generatedScene(FuzzedDataProvider& data) {
     int objects = data.ConsumeIntegralInRange(0, 6);
     for (int i = 0; i < objects; ++i) {
         std::string material = "\"material\": \"m" + std::to_string(data.ConsumeIntegralInRange(0, 4)) + "\"";
-        switch (data.ConsumeIntegralInRange(0, 4)) {
+        switch (data.ConsumeIntegralInRange(0, 5)) {
+            case 5: {
+                // A mesh: its file's materials (textured) or a scene material, under a transform.
+                text += "{\"type\": \"mesh\", \"file\": \"" + generatedObj(data, files, i) + "\"";
+                if (data.ConsumeBool()) {
+                    text += ", \"transform\": {\"scale\": " + photon::formatNumber(data.ConsumeFloatingPointInRange(0.1, 4.0)) +
+                            ", \"translate\": " + vec3From(data) + "}";
+                }
+                if (data.ConsumeBool()) {
+                    text += "}" + std::string(i + 1 < objects ? ", " : "");
+                    continue;
+                }
+                break;
+            }
             case 0: text += "{\"type\": \"sphere\", \"center\": " + vec3From(data) + ", \"radius\": " + numberFrom(data); break;
             case 1: text += "{\"type\": \"plane\", \"point\": " + vec3From(data) + ", \"normal\": " + vec3From(data); break;
             case 2:
@@ -131,11 +247,15 @@ std::string generatedScene(FuzzedDataProvider& data) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t size) {
     std::string input(reinterpret_cast<const char*>(bytes), size);
     std::size_t nul = input.find('\0');
-    std::string sceneText = input.substr(0, nul);
+    // A scene file may carry the files of its mesh objects (companions.h).
+    Files files;
+    std::string sceneText = photon::fuzz::splitCompanions(input.substr(0, nul), files);
     FuzzedDataProvider data(bytes + std::min(size, nul == std::string::npos ? size : nul + 1),
                             nul == std::string::npos ? 0 : size - nul - 1);
     try {
-        photon::Scene scene = photon::loadSceneJson(nul == 0 ? generatedScene(data) : sceneText, "fuzz.json");
+        std::string text = nul == 0 ? generatedScene(data, files) : sceneText;
+        photon::FileReader read = photon::fuzz::companionReader(files);
+        photon::Scene scene = photon::loadSceneJson(text, "fuzz.json", "", read);
         photon::RenderSettings settings = scene.render;
         int changes = data.ConsumeIntegralInRange(0, 6);
         const auto& specs = photon::settingSpecs();
@@ -145,26 +265,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t siz
         }
         // Tiny, so that each input renders in milliseconds (what is refused at these sizes is
         // refused at any size).
-        settings.width = std::min(settings.width, 12u);
-        settings.height = std::min(settings.height, 10u);
-        settings.photons = std::min(settings.photons, 1500u);
-        settings.frames = std::min(settings.frames, 2u);
-        settings.gatherRays = std::min(settings.gatherRays, 4u);
-        settings.lightSamples = std::min(settings.lightSamples, 2u);
-        settings.gridResolution = std::min(settings.gridResolution, 64u);
-        auto backend = photon::createCpuBackend();
-        backend->setScene(scene);
-        backend->setSettings(settings);
-        for (std::uint32_t f = 0; f < settings.frames; ++f) {
-            backend->renderFrame();
-        }
-        if (!photon::allFinite(backend->image())) {
-            std::fprintf(stderr, "render_fuzz: a non-finite pixel\n");
-            std::abort();
-        }
-        if (std::getenv("PHOTON_FUZZ_TRACE")) {
-            std::fprintf(stderr, "rendered %ux%u, %u photons\n", settings.width, settings.height, settings.photons);
-        }
+        photon::fuzz::renderTiny(scene, settings, 12, 10, 1500);
     } catch (const photon::InputError& e) {
         // Refused: the expected outcome for many inputs.
         if (std::getenv("PHOTON_FUZZ_TRACE")) {
