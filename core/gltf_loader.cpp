@@ -420,7 +420,7 @@ struct Loader {
             Light& spot = scene.lights.back();
             spot.power = colour * (intensity * 2.0f * PI * spot.spotOuter * spot.falloffMean);
         } else {
-            fail(where + "/type", "unknown light type '" + l.type + "'");
+            fail(where + "/type", "unknown light type " + quote(l.type));
         }
         extras.lights += 1;
     }
@@ -555,7 +555,7 @@ ModelExtras addGltfModel(Scene& scene, const std::string& path, const std::strin
     for (std::size_t i = 0; i < loader.model.extensionsRequired.size(); ++i) {
         const std::string& e = loader.model.extensionsRequired[i];
         if (std::none_of(std::begin(kSupportedRequired), std::end(kSupportedRequired), [&](const char* s) { return e == s; })) {
-            loader.fail("/extensionsRequired/" + std::to_string(i), "the required extension '" + e + "' is not supported");
+            loader.fail("/extensionsRequired/" + std::to_string(i), "the required extension " + quote(e) + " is not supported");
         }
     }
     loader.materials.assign(loader.model.materials.size(), NONE);

@@ -57,7 +57,7 @@ void checkObjText(const std::string& path, const std::string& text) {
                 char* stop = nullptr;
                 double x = std::strtod(token.c_str(), &stop);
                 if (stop != token.c_str() + token.size() || !std::isfinite(x) || std::abs(x) > 3.4e38) {
-                    fail("'" + token + "' is not a finite number");
+                    fail(quote(token) + " is not a finite number");
                 }
                 numbers += 1;
             }
@@ -78,7 +78,7 @@ void checkObjText(const std::string& path, const std::string& text) {
                     slash = next == std::string::npos ? next : next + 1;
                     if (index.empty()) {
                         if (part == 0) {
-                            fail("face corner '" + token + "' has no vertex index");
+                            fail("face corner " + quote(token) + " has no vertex index");
                         }
                         continue;
                     }
@@ -87,8 +87,8 @@ void checkObjText(const std::string& path, const std::string& text) {
                     const char* names[3] = {"vertex", "texture coordinate", "normal"};
                     long long n = static_cast<long long>(counts[part]);
                     if (stop != index.c_str() + index.size() || i == 0 || i > n || i < -n) {
-                        fail(std::string(names[part]) + " index '" + index + "' out of range (" + std::to_string(n) +
-                             " defined before this line)");
+                        fail(std::string(names[part]) + " index " + quote(index) + " out of range (" +
+                             std::to_string(n) + " defined before this line)");
                     }
                 }
             }

@@ -102,7 +102,7 @@ Material readSurface(const Node& node) {
         }
         return makeReflective(albedo, specular);
     }
-    node["type"].fail("unknown material type '" + type + "' (expected diffuse|mirror|glass|glossy|reflective)");
+    node["type"].fail("unknown material type " + quote(type) + " (expected diffuse|mirror|glass|glossy|reflective)");
 }
 
 // Any material may also emit (radiance from its front): triangles and meshes of an emitting
@@ -130,7 +130,7 @@ std::uint32_t materialOf(const Scene& scene, const Node& object) {
     Node ref = object["material"];
     std::uint32_t material = scene.findMaterial(ref.string());
     if (material == NONE) {
-        ref.fail("unknown material '" + ref.string() + "'");
+        ref.fail("unknown material " + quote(ref.string()));
     }
     return material;
 }
@@ -139,7 +139,7 @@ std::uint32_t materialOf(const Scene& scene, const Node& object) {
 std::uint32_t nonEmittingMaterialOf(const Scene& scene, const Node& object) {
     std::uint32_t material = materialOf(scene, object);
     if (!isBlack(scene.materials[material].emission)) {
-        object["material"].fail("'" + object["material"].string() + "' emits, and only triangles and meshes emit " +
+        object["material"].fail(quote(object["material"].string()) + " emits, and only triangles and meshes emit " +
                                 "(a sphere or quad that shines is a light: see \"lights\")");
     }
     return material;
@@ -213,7 +213,7 @@ void readMesh(Scene& scene, const Node& node, const std::string& folder) {
         file.fail("must not be empty");
     }
     if (!isModelFile(name)) {
-        file.fail("'" + name + "' is not a model file Photon reads (.obj, .gltf, .glb)");
+        file.fail(quote(name) + " is not a model file Photon reads (.obj, .gltf, .glb)");
     }
     std::string path = !name.empty() && name[0] == '/' ? name : folder + name;
     try {
@@ -279,7 +279,7 @@ void readObject(Scene& scene, const Node& node, const std::string& folder) {
             scene.addQuad(far, edge1, edge2, material);
         }
     } else {
-        node["type"].fail("unknown object type '" + type + "' (expected sphere|plane|quad|triangle|box|mesh)");
+        node["type"].fail("unknown object type " + quote(type) + " (expected sphere|plane|quad|triangle|box|mesh)");
     }
 }
 
@@ -308,7 +308,7 @@ void readLight(Scene& scene, const Node& node) {
             glm::vec3 axis = node["direction"].direction();
             scene.addHemisphereLight(position, axis, readPower(node["power"]));
         } else {
-            node["emission"].fail("unknown emission '" + emission + "' (expected isotropic|hemisphere)");
+            node["emission"].fail("unknown emission " + quote(emission) + " (expected isotropic|hemisphere)");
         }
     } else if (type == "spot") {
         node.allowKeys({"type", "power", "position", "direction", "angle", "falloff_start"});
@@ -339,7 +339,7 @@ void readLight(Scene& scene, const Node& node) {
         node.checkSpan(edgeU, edgeV, "edge_u and edge_v are parallel or zero (area at most 1e-12)");
         scene.addQuadLight(corner, edgeU, edgeV, readPower(node["power"]));
     } else {
-        node["type"].fail("unknown light type '" + type + "' (expected point|spot|sphere|quad)");
+        node["type"].fail("unknown light type " + quote(type) + " (expected point|spot|sphere|quad)");
     }
 }
 

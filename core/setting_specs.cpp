@@ -165,7 +165,7 @@ const SettingSpec* findSetting(const std::string& keyOrFlag) {
 void setSetting(RenderSettings& settings, const SettingSpec& spec, const std::string& text, const std::string& where) {
     if (spec.kind == SettingKind::Choice) {
         if (!spec.setName(settings, text)) {
-            fail(where, "unknown value '" + text + "' (expected " + spec.choices + ")");
+            fail(where, "unknown value " + quote(text) + " (expected " + spec.choices + ")");
         }
         markGiven(settings, spec);
         return;
@@ -176,7 +176,7 @@ void setSetting(RenderSettings& settings, const SettingSpec& spec, const std::st
         } else if (text == "false" || text == "0" || text == "off") {
             spec.set(settings, 0.0);
         } else {
-            fail(where, "must be true or false (got '" + text + "')");
+            fail(where, "must be true or false (got " + quote(text) + ")");
         }
         markGiven(settings, spec);
         return;
@@ -187,7 +187,7 @@ void setSetting(RenderSettings& settings, const SettingSpec& spec, const std::st
     errno = 0;
     double value = decimal ? std::strtod(text.c_str(), &end) : 0.0;
     if (!decimal || end != text.c_str() + text.size()) {
-        fail(where, "must be " + expectation(spec) + " (got '" + text + "', not a number)");
+        fail(where, "must be " + expectation(spec) + " (got " + quote(text) + ", not a number)");
     }
     store(settings, spec, value, text, where);
 }

@@ -338,5 +338,16 @@ TEST(SceneLoaderErrors, PointersEscapeAndMessagesStayOnOneLine) {
               "x.json: /objects/0/material: unknown material 'a\\x0ab'");
 }
 
+// A quoted token in a message is cut to 40 characters: a 100000-digit number is not a 100 KB line.
+TEST(SceneLoaderErrors, LongTokensAreCut) {
+    std::string digits(100000, '7');
+    std::string e = errorOf(sceneWith("background", "[" + digits + ", 0, 0]"));
+    EXPECT_LT(e.size(), 200u) << e.substr(0, 300);
+    EXPECT_NE(e.find("'" + std::string(40, '7') + "...'"), std::string::npos) << e.substr(0, 300);
+    e = objectError(R"({"type": ")" + std::string(5000, 'x') + R"(", "material": "white"})");
+    EXPECT_EQ(e, "x.json: /objects/0/type: unknown object type '" + std::string(40, 'x') +
+                     "...' (expected sphere|plane|quad|triangle|box|mesh)");
+}
+
 }  // namespace
 }  // namespace photon
