@@ -2,11 +2,12 @@
 # Hostile input, from the outside (issue 8): every case is a clean error (one line naming the file
 # or option, exit 2 for bad input, 1 for a runtime failure) or a correct image; never a crash, a
 # hang, a NaN image or a half-written file.
-#   tests/reliability_test.sh <photon-render> <photon-bench> <scenes dir>
+#   tests/reliability_test.sh <photon-render> <photon-bench> <scenes dir> <photon-make-mesh>
 set -uo pipefail
 render=$1
 bench=$2
 scenes=$3
+make_mesh=$4
 tmp=$(mktemp -d)
 cleanup() {
   mountpoint -q "$tmp/full" 2>/dev/null && umount "$tmp/full"
@@ -31,7 +32,7 @@ expect() {
     fail "$* exited $got, expected $code"; cat "$tmp/err"
   elif [ "$code" -ne 0 ] && [ "$lines" -ne 1 ]; then
     fail "$*: $lines lines on stderr, expected one"; cat "$tmp/err"
-  elif [ "$code" -ne 0 ] && ! grep -qE '^photon-(render|bench): ' "$tmp/err"; then
+  elif [ "$code" -ne 0 ] && ! grep -qE '^photon-(render|bench|make-mesh): ' "$tmp/err"; then
     fail "$*: the message does not name the program"; cat "$tmp/err"
   elif [ -n "$message" ] && ! grep -qF -- "$message" "$tmp/err"; then
     fail "$*: stderr lacks '$message'"; cat "$tmp/err"
@@ -131,6 +132,15 @@ done
 expect 2 "no/such" "$bench" --backends cpu --resolutions 32x24 --photons 1000 --json "$tmp/no/such/b.json"
 expect 2 "character device" "$bench" --backends cpu --resolutions 32x24 --photons 1000 --csv /dev/full
 expect 2 "--vary" "$bench" --backends cpu --resolutions 32x24 --photons 1000 --vary radius=nan
+# A resolution is WIDTHxHEIGHT and nothing more (64x48x2 was taken as 64x48).
+for size in 64x48x2 64x48x 64x 64x48junk; do
+  expect 2 "--resolutions: '$size' is not WIDTHxHEIGHT" "$bench" --backends cpu --resolutions "$size" --photons 1000 --cpu-frames 1
+done
+
+# 9. photon-make-mesh: a --material that is not a JSON object is bad input (exit 2), not a failure.
+expect 2 "--material: line 1" "$make_mesh" --triangles 100 --material '{"pbr": ' -o "$tmp/m.glb"
+expect 2 "--material: must be a JSON object" "$make_mesh" --triangles 100 --material '[1, 2]' -o "$tmp/m.glb"
+[ -e "$tmp/m.glb" ] && fail "photon-make-mesh wrote a mesh for a bad --material"
 
 # 10. Smaller things.
 expect 2 "path is empty" "$render" "" "${small[@]}" -o "$tmp/a.png"
