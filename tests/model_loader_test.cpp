@@ -146,6 +146,8 @@ void expectNear(glm::vec3 a, glm::vec3 b, float tolerance = 1e-5f) {
     EXPECT_NEAR(a.z, b.z, tolerance);
 }
 
+const char* const kTriangleObj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+
 // ---- OBJ ------------------------------------------------------------------------------------------
 
 // Texture 0 is a real texture: a material without one must say NONE, or every triangle with
@@ -489,6 +491,24 @@ TEST(GltfLoader, BadFilesNameTheJsonPointerAndTheReason) {
     }
     EXPECT_EQ(errorOf("b.glb", "glTF\x02\0\0\0 truncated").rfind("b.glb: ", 0), 0u);
     EXPECT_EQ(errorOf("b.gltf", "{not json").rfind("b.gltf: ", 0), 0u);
+}
+
+// ---- Messages -------------------------------------------------------------------------------------
+
+// stb_image gives up on such a header with "unknown image type"; the header says how large it is.
+TEST(ModelMessages, HugeImagesSayTheirSize) {
+    std::string png = twoTexelPng();
+    for (int i = 0; i < 2; ++i) {
+        std::uint32_t big = 100000;
+        for (int b = 0; b < 4; ++b) {
+            png[std::size_t(16 + 4 * i + b)] = char((big >> (24 - 8 * b)) & 0xff);
+        }
+    }
+    Files files;
+    files.files["a.mtl"] = "newmtl t\nmap_Kd huge.png\n";
+    files.files["huge.png"] = png;
+    EXPECT_EQ(errorOf("a.obj", std::string("mtllib a.mtl\nusemtl t\n") + kTriangleObj, files),
+              "huge.png: image of 100000x100000 texels; at most 8192 a side");
 }
 
 }  // namespace
