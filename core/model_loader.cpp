@@ -40,13 +40,22 @@ bool isModelFile(const std::string& path) {
 ModelExtras addModel(Scene& scene, const std::string& path, const std::string& bytes, const ModelOptions& options,
                      const FileReader& read) {
     std::string ext = lowerExtension(path);
+    std::size_t triangles = scene.triangles.size();
+    std::uint64_t dropped = scene.droppedTriangles;
+    ModelExtras extras;
     if (ext == "obj") {
-        return addObjModel(scene, path, bytes, options, read);
+        extras = addObjModel(scene, path, bytes, options, read);
+    } else if (ext == "gltf" || ext == "glb") {
+        extras = addGltfModel(scene, path, bytes, options, read);
+    } else {
+        throw InputError(path + ": not a model file Photon reads (.obj, .gltf, .glb)");
     }
-    if (ext == "gltf" || ext == "glb") {
-        return addGltfModel(scene, path, bytes, options, read);
+    // The loaders refuse a file without triangles; here every one it had was dropped.
+    if (scene.triangles.size() == triangles) {
+        throw InputError(path + ": no triangles: all " + std::to_string(scene.droppedTriangles - dropped) +
+                         " have no area or are not finite");
     }
-    throw InputError(path + ": not a model file Photon reads (.obj, .gltf, .glb)");
+    return extras;
 }
 
 ModelExtras addModelFile(Scene& scene, const std::string& path, const ModelOptions& options) {

@@ -99,6 +99,14 @@ void checkObjText(const std::string& path, const std::string& text) {
     }
 }
 
+// A UTF-8 byte order mark (Windows editors write one) is not part of the first line.
+std::string withoutBom(std::string text) {
+    if (text.compare(0, 3, "\xEF\xBB\xBF") == 0) {
+        text.erase(0, 3);
+    }
+    return text;
+}
+
 // MTL files through the loader's file reader, relative to the OBJ file.
 class MtlReader final : public tinyobj::MaterialReader {
 public:
@@ -107,7 +115,7 @@ public:
     bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
                     std::map<std::string, int>* map, std::string* warn, std::string* err) override {
         std::string path = folder_ + name;
-        std::string text = read_(path, "MTL file");  // throws InputError naming the file
+        std::string text = withoutBom(read_(path, "MTL file"));  // throws InputError naming the file
         std::istringstream in(text);
         tinyobj::LoadMtl(map, materials, &in, warn, err);
         files.push_back(path);
@@ -164,8 +172,9 @@ Material fromMtl(const tinyobj::material_t& m) {
 
 }  // namespace
 
-ModelExtras addObjModel(Scene& scene, const std::string& path, const std::string& text, const ModelOptions& options,
+ModelExtras addObjModel(Scene& scene, const std::string& path, const std::string& file, const ModelOptions& options,
                         const FileReader& read) {
+    std::string text = withoutBom(file);
     checkObjText(path, text);
     tinyobj::attrib_t attrib;
     std::vector<tinyobj::shape_t> shapes;
@@ -258,7 +267,7 @@ ModelExtras addObjModel(Scene& scene, const std::string& path, const std::string
         }
     }
     if (mesh.triangles.empty()) {
-        throw InputError(path + ": no faces");
+        throw InputError(path + ": no triangles: the file has no faces");
     }
     scene.addMesh(mesh, options.transform);
     return {};

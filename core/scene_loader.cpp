@@ -405,6 +405,10 @@ Scene loadSceneJson(const std::string& text, const std::string& sourceName, cons
         readObject(scene, object, folder);
     }
     readLights(scene, root["lights"]);
+    // Area lights have added their surfaces by now.
+    if (scene.spheres.empty() && scene.planes.empty() && scene.quads.empty() && scene.triangles.empty()) {
+        root["objects"].fail("the scene has no geometry: nothing for light to fall on or the camera to see");
+    }
     if (root.has("render")) {
         readRender(root["render"], scene.render);
     }
