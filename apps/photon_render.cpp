@@ -122,7 +122,7 @@ int run(int argc, char** argv) {
         return code;
     }
 
-    Scene scene = app.count("scene") == 0 ? defaultScene() : loadSceneFile(scenePath);
+    Scene scene = app.count("scene") == 0 ? defaultScene() : loadSceneFile(scenePath, options.paths);
     RenderSettings settings = scene.render;
     applyRenderOptions(app, options, settings);
     // No length given anywhere: as long as a clean image takes on a small machine's CPU.

@@ -373,7 +373,9 @@ struct Loader {
         std::string bytes(image.image.begin(), image.image.end());
         if (bytes.empty() && !image.uri.empty() && image.uri.rfind("data:", 0) != 0) {
             // tinygltf keeps going past an external image it could not read: read it again for the reason.
-            bytes = read(folderOf(path) + image.uri, "image");
+            std::string file = namedFile(folderOf(path), image.uri);
+            checkNamedFile(path, file, "image", options.paths);
+            bytes = read(file, "image");
         }
         textures[std::size_t(index)] = addImageTexture(scene, bytes, wrapS, wrapT, path + ": " + at("images", std::size_t(t.source)));
         return textures[std::size_t(index)];
@@ -766,19 +768,28 @@ struct Loader {
     }
 };
 
-// tinygltf reads external buffers and images through the loader's file reader.
+// tinygltf reads external buffers and images through the loader's file reader, each checked to lie
+// in the model's folder tree first. The first refusal or read error is kept whole for the message
+// (tinygltf would wrap it in its own words).
 struct FileSystem {
     const FileReader& read;
-    std::string folder;
+    const std::string& model;
+    const PathPolicy& paths;
+    std::string error;
 };
 
 bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
     auto* fs = static_cast<FileSystem*>(user);
     try {
-        std::string bytes = fs->read(path, "file the glTF references");
+        std::string file = namedFile("", path);
+        checkNamedFile(fs->model, file, "file", fs->paths);
+        std::string bytes = fs->read(file, "file the glTF names");
         out->assign(bytes.begin(), bytes.end());
         return true;
     } catch (const InputError& e) {
+        if (fs->error.empty()) {
+            fs->error = e.what();
+        }
         *err += std::string(e.what()) + "\n";
         return false;
     }
@@ -807,17 +818,21 @@ ModelExtras addGltfModel(Scene& scene, const std::string& path, const std::strin
     GltfDocument doc = prepareGltf(path, bytes);
     loader.fallbackBuffers = doc.fallbackBuffers;
     tinygltf::TinyGLTF gltf;
-    FileSystem fs{read, folderOf(path)};
+    FileSystem fs{read, path, options.paths, {}};
     gltf.SetFsCallbacks({fileExists, expandPath, readWholeFile, writeWholeFile, &fs});
     gltf.SetImageLoader(keepImage, nullptr);
     std::string err;
     std::string warn;
-    std::string base = fs.folder.empty() ? "." : fs.folder;
+    std::string folder = folderOf(path);
+    std::string base = folder.empty() ? "." : folder;
     const std::string& data = doc.bytes;
     bool ok = doc.binary ? gltf.LoadBinaryFromMemory(&loader.model, &err, &warn,
                                                      reinterpret_cast<const unsigned char*>(data.data()),
                                                      unsigned(data.size()), base)
                          : gltf.LoadASCIIFromString(&loader.model, &err, &warn, data.data(), unsigned(data.size()), base);
+    if (!ok && !fs.error.empty()) {
+        throw InputError(fs.error);
+    }
     if (!ok) {
         std::string first = err.substr(0, err.find('\n'));
         throw InputError(path + ": " + (first.empty() ? std::string("not a glTF file") : first));

@@ -107,14 +107,16 @@ std::string withoutBom(std::string text) {
     return text;
 }
 
-// MTL files through the loader's file reader, relative to the OBJ file.
+// MTL files through the loader's file reader, relative to the OBJ file and inside its folder tree.
 class MtlReader final : public tinyobj::MaterialReader {
 public:
-    MtlReader(std::string folder, const FileReader& read) : folder_(std::move(folder)), read_(read) {}
+    MtlReader(const std::string& objPath, const FileReader& read, const PathPolicy& paths)
+        : objPath_(objPath), read_(read), paths_(paths) {}
 
     bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
                     std::map<std::string, int>* map, std::string* warn, std::string* err) override {
-        std::string path = folder_ + name;
+        std::string path = namedFile(folderOf(objPath_), name);
+        checkNamedFile(objPath_, path, "mtllib", paths_);
         std::string text = withoutBom(read_(path, "MTL file"));  // throws InputError naming the file
         std::istringstream in(text);
         tinyobj::LoadMtl(map, materials, &in, warn, err);
@@ -125,8 +127,9 @@ public:
     std::vector<std::string> files;
 
 private:
-    std::string folder_;
+    const std::string& objPath_;
     const FileReader& read_;
+    const PathPolicy& paths_;
 };
 
 glm::vec3 clampedColour(const tinyobj::real_t* c) {
@@ -182,7 +185,7 @@ ModelExtras addObjModel(Scene& scene, const std::string& path, const std::string
     std::string warn;
     std::string err;
     std::istringstream in(text);
-    MtlReader mtl(folderOf(path), read);
+    MtlReader mtl(path, read, options.paths);
     bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &in, &mtl, true, false);
     if (!ok) {
         throw InputError(path + ": " + (err.empty() ? std::string("not an OBJ file") : err.substr(0, err.find('\n'))));
@@ -196,7 +199,8 @@ ModelExtras addObjModel(Scene& scene, const std::string& path, const std::string
             Material m = fromMtl(materials[i]);
             if (!materials[i].diffuse_texname.empty() && (m.type == MATERIAL_DIFFUSE || m.type == MATERIAL_GLOSSY ||
                                                           m.type == MATERIAL_REFLECTIVE)) {
-                std::string image = folderOf(mtl.files.empty() ? path : mtl.files.front()) + materials[i].diffuse_texname;
+                std::string image = namedFile(folderOf(mtl.files.empty() ? path : mtl.files.front()), materials[i].diffuse_texname);
+                checkNamedFile(path, image, "texture map", options.paths);
                 m.albedoTexture = addImageTexture(scene, read(image, "texture"), WRAP_REPEAT, WRAP_REPEAT, image);
                 if (!anyPositive(m.albedo)) {
                     m.albedo = glm::vec3(1.0f);  // map_Kd alone: the texture is the colour

@@ -198,9 +198,10 @@ glm::mat4 readTransform(const Node& node) {
 
 // A model file as an object: its path relative to the scene file, its file's materials or one of
 // the scene's, and a transform.
-void readMesh(Scene& scene, const Node& node, const std::string& folder) {
+void readMesh(Scene& scene, const Node& node, const std::string& folder, const PathPolicy& paths) {
     node.allowKeys({"type", "file", "material", "transform"});
     ModelOptions options;
+    options.paths = paths;
     if (node.has("material")) {
         options.material = materialOf(scene, node);
     }
@@ -223,7 +224,7 @@ void readMesh(Scene& scene, const Node& node, const std::string& folder) {
     }
 }
 
-void readObject(Scene& scene, const Node& node, const std::string& folder) {
+void readObject(Scene& scene, const Node& node, const std::string& folder, const PathPolicy& paths) {
     const std::string& type = node["type"].string();
     if (type == "sphere") {
         node.allowKeys({"type", "material", "center", "radius"});
@@ -257,7 +258,7 @@ void readObject(Scene& scene, const Node& node, const std::string& folder) {
         vertices.checkSpan(b - a, c - a, "degenerate triangle: the vertices are collinear or coincide");
         scene.addTriangle(a, b, c, material);
     } else if (type == "mesh") {
-        readMesh(scene, node, folder);
+        readMesh(scene, node, folder, paths);
     } else if (type == "box") {
         node.allowKeys({"type", "material", "min", "max"});
         std::uint32_t material = nonEmittingMaterialOf(scene, node);
@@ -387,7 +388,8 @@ void readRender(const Node& node, RenderSettings& s) {
 
 }  // namespace
 
-Scene loadSceneJson(const std::string& text, const std::string& sourceName, const std::string& folder) {
+Scene loadSceneJson(const std::string& text, const std::string& sourceName, const std::string& folder,
+                    const PathPolicy& paths) {
     const json document = parseJson(text, sourceName);
     const Node root(document, "", sourceName);
     root.allowKeys({"name", "camera", "background", "materials", "objects", "lights", "render"});
@@ -402,7 +404,7 @@ Scene loadSceneJson(const std::string& text, const std::string& sourceName, cons
     }
     readMaterials(scene, root["materials"]);
     for (const Node& object : root["objects"].elements()) {
-        readObject(scene, object, folder);
+        readObject(scene, object, folder, paths);
     }
     readLights(scene, root["lights"]);
     // Area lights have added their surfaces by now.
@@ -416,11 +418,11 @@ Scene loadSceneJson(const std::string& text, const std::string& sourceName, cons
     return scene;
 }
 
-Scene loadSceneFile(const std::string& path) {
+Scene loadSceneFile(const std::string& path, const PathPolicy& paths) {
     if (isModelFile(path)) {
-        return loadModelScene(path);
+        return loadModelScene(path, paths);
     }
-    return loadSceneJson(readInputFile(path, kSceneFileLimit, "scene file"), path, folderOf(path));
+    return loadSceneJson(readInputFile(path, kSceneFileLimit, "scene file"), path, folderOf(path), paths);
 }
 
 Scene defaultScene() { return loadSceneJson(kEmbeddedCornellJson, "<embedded cornell.json>"); }

@@ -4,17 +4,20 @@
 
 #include <string>
 
+#include "model_loader.h"
 #include "scene.h"
 
 namespace photon {
 
 // Reads a scene file, or a model file (.obj, .gltf, .glb) as a scene of its own; throws
 // InputError("<path>: <json pointer>: <reason>") on any problem.
-Scene loadSceneFile(const std::string& path);
+// `paths` rules where the files that model files name may lie (model_loader.h).
+Scene loadSceneFile(const std::string& path, const PathPolicy& paths = {});
 
 // Same from text; sourceName is used in messages in place of the path, and model files of mesh
 // objects are found relative to `folder` (with its trailing '/', or "" for the working folder).
-Scene loadSceneJson(const std::string& text, const std::string& sourceName, const std::string& folder = "");
+Scene loadSceneJson(const std::string& text, const std::string& sourceName, const std::string& folder = "",
+                    const PathPolicy& paths = {});
 
 // The default scene: the Cornell box embedded in the binary.
 Scene defaultScene();

@@ -913,6 +913,95 @@ TEST(GltfLoader, Gltf1IsNamed) {
     EXPECT_EQ(errorOf("old.glb", glb + json), "old.glb: a glTF 1.0 binary file; Photon reads glTF 2.0");
 }
 
+// ---- The files a model names ---------------------------------------------------------------------
+
+// Real files in a fresh folder: symbolic links and `..` are the file system's to resolve.
+struct TempTree {
+    std::filesystem::path root = std::filesystem::temp_directory_path() / ("photon-paths-" + std::to_string(::getpid()));
+
+    TempTree() { std::filesystem::create_directories(root); }
+    ~TempTree() { std::filesystem::remove_all(root); }
+
+    std::string write(const std::string& name, const std::string& bytes) const {
+        std::filesystem::path file = root / name;
+        std::filesystem::create_directories(file.parent_path());
+        std::ofstream(file, std::ios::binary) << bytes;
+        return file.string();
+    }
+};
+
+std::string fileErrorOf(const std::string& path, const PathPolicy& paths = {}) {
+    try {
+        Scene scene;
+        ModelOptions options;
+        options.paths = paths;
+        addModelFile(scene, path, options);
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "(loaded)";
+}
+
+TEST(ModelPaths, NamedFilesStayInTheModelsFolderTree) {
+    TempTree t;
+    t.write("secret.mtl", "newmtl s\nKd 1 0 0\n# SECRET 123456\n");
+    t.write("models/mb/other.mtl", "newmtl s\nKd 1 0 0\n");
+    t.write("models/m/sub/inside.mtl", "newmtl s\nKd 0 1 0\n");
+    std::string outside = t.write("models/m/outside.obj", std::string("mtllib ../../secret.mtl\nusemtl s\n") + kTriangleObj);
+    std::string sibling = t.write("models/m/sibling.obj", std::string("mtllib ../mb/other.mtl\nusemtl s\n") + kTriangleObj);
+    std::string folded = t.write("models/m/folded.obj", std::string("mtllib sub/../sub/./inside.mtl\nusemtl s\n") + kTriangleObj);
+    std::filesystem::create_symlink(t.root / "secret.mtl", t.root / "models/m/link.mtl");
+    std::string linked = t.write("models/m/linked.obj", std::string("mtllib link.mtl\nusemtl s\n") + kTriangleObj);
+
+    std::string e = fileErrorOf(outside);
+    EXPECT_EQ(e, outside + ": mtllib " + quote((t.root / "secret.mtl").string()) +
+                     " lies outside the model's folder (--allow-outside-paths reads it)");
+    EXPECT_EQ(e.find("SECRET"), std::string::npos);
+    EXPECT_EQ(e.find("35"), std::string::npos) << "nor its size";
+    EXPECT_NE(fileErrorOf(sibling).find("lies outside the model's folder"), std::string::npos)
+        << "/models/mb is not inside /models/m: components are compared, not characters";
+    EXPECT_NE(fileErrorOf(linked).find("lies outside the model's folder"), std::string::npos) << "symbolic links are followed";
+    EXPECT_EQ(fileErrorOf(folded), "(loaded)");
+    EXPECT_EQ(fileErrorOf(outside, PathPolicy{true}), "(loaded)");
+    EXPECT_EQ(fileErrorOf(linked, PathPolicy{true}), "(loaded)");
+}
+
+TEST(ModelPaths, GltfBuffersAndImagesToo) {
+    TempTree t;
+    Gltf g;
+    std::string text = g.text();
+    std::size_t uri = text.find("data:application/octet-stream;base64,");
+    text.replace(uri, text.find('"', uri) - uri, "../mesh.bin");
+    t.write("mesh.bin", g.data());
+    std::string model = t.write("m/model.gltf", text);
+    EXPECT_EQ(fileErrorOf(model).rfind(model + ": file '", 0), 0u) << fileErrorOf(model);
+    EXPECT_NE(fileErrorOf(model).find("lies outside the model's folder"), std::string::npos);
+    EXPECT_EQ(fileErrorOf(model, PathPolicy{true}), "(loaded)");
+
+    Gltf image;
+    image.parts["materials"] = R"([{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0}}])";
+    image.parts["textures"] = R"([{"source": 0}])";
+    image.parts["images"] = R"([{"uri": "../../tex.png"}])";
+    t.write("tex.png", twoTexelPng());
+    std::string textured = t.write("a/b/model.gltf", image.text());
+    EXPECT_NE(fileErrorOf(textured).find("lies outside the model's folder"), std::string::npos) << fileErrorOf(textured);
+    EXPECT_EQ(fileErrorOf(textured, PathPolicy{true}), "(loaded)");
+}
+
+// Models written on Windows name their files with backslashes.
+TEST(ModelPaths, BackslashesAreSeparators) {
+    Files files;
+    files.files["m/mat.mtl"] = "newmtl a\nmap_Kd .\\tex.png\nnewmtl b\nmap_Kd textures\\wood.png\n";
+    files.files["m/tex.png"] = twoTexelPng();
+    files.files["m/textures/wood.png"] = twoTexelPng();
+    Scene scene;
+    load(scene, "m/w.obj", "mtllib mat.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\nusemtl b\nf 1 2 3\n", files);
+    ASSERT_EQ(scene.triangles.size(), 2u);
+    EXPECT_NE(scene.materials[scene.triangles[0].material].albedoTexture, NONE);
+    EXPECT_NE(scene.materials[scene.triangles[1].material].albedoTexture, NONE);
+    EXPECT_EQ(namedFile("m/", "..\\x\\.\\y.png"), "x/y.png");
+}
+
 // ---- Messages -------------------------------------------------------------------------------------
 
 TEST(ModelMessages, ByteOrderMarkIsNotPartOfTheFirstLine) {
