@@ -142,7 +142,9 @@ int run(int argc, char** argv) {
     }
 
     if (scene.droppedTriangles > 0 && !quiet) {
-        std::fprintf(stderr, "%s: %llu triangles without area (or not finite) dropped\n", scene.name.c_str(),
+        // Named by the file: a scene file's "name" may be empty, or say nothing of where they were.
+        std::string source = app.count("scene") == 0 ? "<embedded cornell.json>" : scenePath;
+        std::fprintf(stderr, "%s: %llu triangles without area (or not finite) dropped\n", printable(source).c_str(),
                      static_cast<unsigned long long>(scene.droppedTriangles));
     }
     std::unique_ptr<Backend> backend = createBackend(backendName, backendOptions);

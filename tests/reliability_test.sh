@@ -142,7 +142,28 @@ expect 2 "--material: line 1" "$make_mesh" --triangles 100 --material '{"pbr": '
 expect 2 "--material: must be a JSON object" "$make_mesh" --triangles 100 --material '[1, 2]' -o "$tmp/m.glb"
 [ -e "$tmp/m.glb" ] && fail "photon-make-mesh wrote a mesh for a bad --material"
 
-# 10. Smaller things.
+# 10. Model files: no token quoted whole, no image size taken on trust.
+printf '{"camera": {"position": [0, 1, 4], "look_at": [0, 1, 0]}, "background": [%s, 0, 0], "materials": {}, "lights": [], "objects": []}' \
+  "$(head -c 100000 /dev/zero | tr '\0' 7)" >"$tmp/long.json"
+expect 2 "long.json: " "$render" "$tmp/long.json" "${small[@]}" -o "$tmp/a.png"
+[ "$(wc -c <"$tmp/err")" -lt 200 ] || fail "a 100000-digit number: a message of $(wc -c <"$tmp/err") bytes"
+{ printf 'v '; head -c 100000 /dev/zero | tr '\0' 9; printf ' 0 0\n'; } >"$tmp/long.obj"
+expect 2 "long.obj: line 1: " "$render" "$tmp/long.obj" "${small[@]}" -o "$tmp/a.png"
+[ "$(wc -c <"$tmp/err")" -lt 200 ] || fail "a 100000-digit OBJ number: a message of $(wc -c <"$tmp/err") bytes"
+# A valid PNG header announcing 100000 x 100000 texels (stb_image said "unknown image type").
+python3 - "$tmp" <<'PNG'
+import struct, sys, zlib
+def chunk(kind, data):
+    return struct.pack('>I', len(data)) + kind + data + struct.pack('>I', zlib.crc32(kind + data) & 0xffffffff)
+png = b'\x89PNG\r\n\x1a\n' + chunk(b'IHDR', struct.pack('>IIBBBBB', 100000, 100000, 8, 2, 0, 0, 0))
+png += chunk(b'IDAT', zlib.compress(b'\0' * 301)) + chunk(b'IEND', b'')
+open(sys.argv[1] + '/huge.png', 'wb').write(png)
+open(sys.argv[1] + '/huge.mtl', 'w').write('newmtl t\nmap_Kd huge.png\n')
+open(sys.argv[1] + '/huge.obj', 'w').write('mtllib huge.mtl\nusemtl t\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n')
+PNG
+expect 2 "huge.png: image of 100000x100000 texels; at most 8192 a side" "$render" "$tmp/huge.obj" "${small[@]}" -o "$tmp/a.png"
+
+# 11. Smaller things.
 expect 2 "path is empty" "$render" "" "${small[@]}" -o "$tmp/a.png"
 { cat "$scenes/cornell.json"; printf '\0'; } >"$tmp/nul.json"
 expect 2 "NUL" "$render" "$tmp/nul.json" "${small[@]}" -o "$tmp/a.png"
