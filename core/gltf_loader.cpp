@@ -783,7 +783,7 @@ bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std:
     try {
         std::string file = namedFile("", path);
         checkNamedFile(fs->model, file, "file", fs->paths);
-        std::string bytes = fs->read(file, "file the glTF names");
+        std::string bytes = fs->read(file, "buffer or image");
         out->assign(bytes.begin(), bytes.end());
         return true;
     } catch (const InputError& e) {
