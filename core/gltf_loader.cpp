@@ -800,8 +800,20 @@ std::string expandPath(const std::string& path, void*) { return path; }
 bool writeWholeFile(std::string*, const std::string&, const std::vector<unsigned char>&, void*) { return false; }
 
 // Images stay encoded here; the material that uses one decodes it (texture_loader.cpp).
-bool keepImage(tinygltf::Image* image, const int, std::string*, std::string*, int, int, const unsigned char* bytes,
-               int size, void*) {
+// tinygltf hands over an image in a buffer view as a pointer and the view's byteLength, unchecked
+// against the buffer (which it has read already, into the model it is filling: `user`).
+bool keepImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
+               const unsigned char* bytes, int size, void* user) {
+    if (image->bufferView >= 0) {
+        const auto* model = static_cast<const tinygltf::Model*>(user);
+        const tinygltf::BufferView& bv = model->bufferViews[std::size_t(image->bufferView)];  // checked by tinygltf
+        const std::vector<unsigned char>& data = model->buffers[std::size_t(bv.buffer)].data;
+        if (bv.byteOffset > data.size() || bv.byteLength > data.size() - bv.byteOffset) {
+            *err += "/images/" + std::to_string(index) + ": buffer view " + std::to_string(image->bufferView) +
+                    " extends beyond its buffer of " + std::to_string(data.size()) + " bytes\n";
+            return false;
+        }
+    }
     image->image.assign(bytes, bytes + std::max(size, 0));
     image->as_is = true;
     return true;
@@ -820,7 +832,7 @@ ModelExtras addGltfModel(Scene& scene, const std::string& path, const std::strin
     tinygltf::TinyGLTF gltf;
     FileSystem fs{read, path, options.paths, {}};
     gltf.SetFsCallbacks({fileExists, expandPath, readWholeFile, writeWholeFile, &fs});
-    gltf.SetImageLoader(keepImage, nullptr);
+    gltf.SetImageLoader(keepImage, &loader.model);
     std::string err;
     std::string warn;
     std::string folder = folderOf(path);

@@ -493,6 +493,17 @@ TEST(GltfLoader, BadFilesNameTheJsonPointerAndTheReason) {
         text.replace(length, text.find(',', length) - length, "4");  // the buffer shorter than its data
         EXPECT_EQ(errorOf("b.gltf", text).rfind("b.gltf: ", 0), 0u) << errorOf("b.gltf", text);
     }
+    {
+        // tinygltf passes an image's buffer view on without checking it against the buffer (found
+        // by the fuzzer: a heap overflow in keepImage).
+        Gltf g;
+        g.parts["images"] = R"([{"bufferView": 3, "mimeType": "image/png"}])";
+        std::string text = g.text();
+        std::size_t views = text.find(R"("bufferViews": [)") + 16;
+        text.insert(text.find("}]", views) + 1, R"(, {"buffer": 0, "byteOffset": 8, "byteLength": 100000})");
+        EXPECT_EQ(errorOf("b.gltf", text), "b.gltf: /images/0: buffer view 3 extends beyond its buffer of " +
+                                               std::to_string(g.data().size()) + " bytes");
+    }
     EXPECT_EQ(errorOf("b.glb", "glTF\x02\0\0\0 truncated").rfind("b.glb: ", 0), 0u);
     EXPECT_EQ(errorOf("b.gltf", "{not json").rfind("b.gltf: ", 0), 0u);
 }
