@@ -158,6 +158,12 @@ GltfDocument prepareGltf(const std::string& path, const std::string& bytes) {
         }
         text = bytes.substr(20, length);
         jsonEnd = 20 + std::size_t(length);
+        // tinygltf 2.7 checks the binary chunk against the file's length without the chunk's own
+        // 8-byte header, so a chunk that claims to end the file is read 8 bytes past its end.
+        if (jsonEnd + 8 <= bytes.size() && jsonEnd + 8 + std::size_t(word(bytes, jsonEnd)) > bytes.size()) {
+            throw InputError(path + ": the binary chunk of " + std::to_string(word(bytes, jsonEnd)) +
+                             " bytes extends beyond the file");
+        }
     }
     json root = json::parse(text, nullptr, false);
     if (root.is_discarded() || !root.is_object()) {

@@ -504,6 +504,36 @@ TEST(GltfLoader, BadFilesNameTheJsonPointerAndTheReason) {
         EXPECT_EQ(errorOf("b.gltf", text), "b.gltf: /images/0: buffer view 3 extends beyond its buffer of " +
                                                std::to_string(g.data().size()) + " bytes");
     }
+    {
+        // A binary chunk whose length counts its own header: tinygltf read 8 bytes past the file
+        // (found by the fuzzer).
+        Gltf g;
+        std::string text = g.text();
+        std::size_t uri = text.find(R"(, "uri": ")");
+        text.erase(uri, text.find('"', uri + 10) + 1 - uri);  // the buffer is the binary chunk
+        while (text.size() % 4 != 0) text += ' ';
+        std::string bin = g.data();
+        std::string glb = "glTF";
+        auto word = [&](std::size_t w) {
+            std::uint32_t x = std::uint32_t(w);
+            glb.append(reinterpret_cast<const char*>(&x), 4);
+        };
+        word(2);
+        word(12 + 8 + text.size() + 8 + bin.size());
+        word(text.size());
+        glb += "JSON" + text;
+        word(bin.size() + 8);
+        glb += "BIN";
+        glb += '\0';
+        glb += bin;
+        EXPECT_EQ(errorOf("b.glb", glb), "b.glb: the binary chunk of " + std::to_string(bin.size() + 8) +
+                                             " bytes extends beyond the file");
+        std::uint32_t honest = std::uint32_t(bin.size());
+        std::memcpy(&glb[20 + text.size()], &honest, 4);  // the honest length loads
+        Scene scene;
+        load(scene, "b.glb", glb);
+        EXPECT_EQ(scene.triangles.size(), 1u);
+    }
     EXPECT_EQ(errorOf("b.glb", "glTF\x02\0\0\0 truncated").rfind("b.glb: ", 0), 0u);
     EXPECT_EQ(errorOf("b.gltf", "{not json").rfind("b.gltf: ", 0), 0u);
 }
