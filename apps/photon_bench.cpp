@@ -77,8 +77,10 @@ std::pair<std::uint32_t, std::uint32_t> parseResolution(const std::string& s) {
     unsigned h = 0;
     char x = 0;
     std::istringstream in(s);
-    if (!(in >> w >> x >> h) || x != 'x' || w == 0 || h == 0 || w > 16384 || h > 16384) {
-        throw InputError("--resolutions: '" + s + "' is not WIDTHxHEIGHT");
+    // Nothing may follow the height: "64x48x2" is not a resolution.
+    if (!(in >> w >> x >> h) || x != 'x' || in.peek() != std::char_traits<char>::eof() || w == 0 || h == 0 ||
+        w > 16384 || h > 16384) {
+        throw InputError("--resolutions: " + quote(s) + " is not WIDTHxHEIGHT");
     }
     return {w, h};
 }

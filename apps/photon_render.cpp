@@ -133,7 +133,7 @@ int run(int argc, char** argv) {
         seconds = parseNumber(secondsText, kSeconds, "--time");
     }
 
-    Scene scene = app.count("scene") == 0 ? defaultScene() : loadSceneFile(scenePath);
+    Scene scene = app.count("scene") == 0 ? defaultScene() : loadSceneFile(scenePath, options.paths);
     RenderSettings settings = scene.render;
     applyRenderOptions(app, options, settings);
     // No length given anywhere: as long as a clean image takes on a small machine's CPU.
@@ -153,7 +153,9 @@ int run(int argc, char** argv) {
     }
 
     if (scene.droppedTriangles > 0 && !quiet) {
-        std::fprintf(stderr, "%s: %llu triangles without area (or not finite) dropped\n", scene.name.c_str(),
+        // Named by the file: a scene file's "name" may be empty, or say nothing of where they were.
+        std::string source = app.count("scene") == 0 ? "<embedded cornell.json>" : scenePath;
+        std::fprintf(stderr, "%s: %llu triangles without area (or not finite) dropped\n", printable(source).c_str(),
                      static_cast<unsigned long long>(scene.droppedTriangles));
     }
     std::unique_ptr<Backend> backend = createBackend(backendName, backendOptions);

@@ -73,7 +73,8 @@ int run(int argc, char** argv) {
     } else if (View v; !viewName.empty() && !parse(viewName, v)) {
         throw InputError("--view: unknown value '" + viewName + "' (expected final|direct|global|caustic|dots|grid)");
     }
-    o.scene = app.count("scene") == 0 ? defaultScene() : loadSceneFile(o.scenePath);
+    o.paths = render.paths;
+    o.scene = app.count("scene") == 0 ? defaultScene() : loadSceneFile(o.scenePath, o.paths);
     o.settings = o.scene.render;
     applyRenderOptions(app, render, o.settings);
     chooseDefaults(o.settings, true);  // the viewer accumulates while the view stays

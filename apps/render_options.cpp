@@ -21,6 +21,8 @@ void addRenderOptions(CLI::App& app, RenderOptions& o) {
         }
         app.add_option(spec.flag, o.values[spec.flag], help)->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
     }
+    app.add_flag("--allow-outside-paths", o.paths.allowOutside,
+                 "Let model files read buffers, images, MTL files and textures outside their own folder");
 }
 
 void applyRenderOptions(const CLI::App& app, const RenderOptions& o, RenderSettings& settings) {

@@ -8,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "core/model_loader.h"
 #include "core/settings.h"
 
 namespace photon {
@@ -15,8 +16,12 @@ namespace photon {
 struct RenderOptions {
     std::map<std::string, std::string> values;  // flag → text as given
     std::map<std::string, bool> flags;          // flag → given (settings without a value)
+    // --allow-outside-paths: not a render setting (a scene file cannot give it to itself), but how
+    // model files are read.
+    PathPolicy paths;
 };
 
+// The settings' options, and --allow-outside-paths.
 void addRenderOptions(CLI::App& app, RenderOptions& options);
 
 // Applies the options that were given; throws InputError "--flag: reason" for a bad value.

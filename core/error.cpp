@@ -62,4 +62,15 @@ std::string printable(const std::string& text) {
     return out;
 }
 
+std::string quote(const std::string& token) {
+    if (token.size() <= kQuotedTokenMax) {
+        return "'" + token + "'";
+    }
+    std::size_t cut = kQuotedTokenMax;
+    while (cut > 0 && (static_cast<unsigned char>(token[cut]) & 0xc0) == 0x80) {
+        cut -= 1;  // not inside a UTF-8 sequence
+    }
+    return "'" + token.substr(0, cut) + "...'";
+}
+
 }  // namespace photon

@@ -21,4 +21,9 @@ struct RuntimeError : std::runtime_error {
 // C1) and bytes that are not UTF-8 become \xNN escapes.
 std::string printable(const std::string& text);
 
+// A token from a file as a message quotes it: 'token', cut to kQuotedTokenMax bytes (at a UTF-8
+// character boundary) with "..." after, so that a 100000-digit number is not a 100 KB line.
+inline constexpr std::size_t kQuotedTokenMax = 40;
+std::string quote(const std::string& token);
+
 }  // namespace photon

@@ -6,7 +6,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
+#include <map>
+#include <memory>
 #include <set>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -18,6 +21,8 @@
 #include <tiny_gltf.h>
 
 #include "error.h"
+#include "gltf_compression.h"
+#include "gltf_document.h"
 #include "model_loader.h"
 #include "shared/math.h"
 #include "texture_loader.h"
@@ -27,9 +32,12 @@ namespace {
 
 constexpr double kWattsPerLumen = 1.0 / 683.0;  // glTF's photometric units taken at 555 nm
 
-const char* const kSupportedRequired[] = {"KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior",
-                                          "KHR_materials_emissive_strength", "KHR_materials_volume",
-                                          "KHR_texture_transform"};
+// The extensions a file may require: every other one in extensionsRequired is refused by name.
+const char* const kSupportedRequired[] = {
+    "KHR_lights_punctual",          "KHR_materials_transmission", "KHR_materials_ior",
+    "KHR_materials_emissive_strength", "KHR_materials_volume",    "KHR_texture_transform",
+    "KHR_mesh_quantization",        "EXT_meshopt_compression",    "KHR_draco_mesh_compression",
+};
 
 struct Loader {
     Scene& scene;
@@ -42,6 +50,13 @@ struct Loader {
                                                          // linear), NONE until used
     std::uint32_t defaultMaterial = NONE;
     ModelExtras extras;
+    std::set<int> fallbackBuffers;                             // EXT_meshopt_compression's, without data
+    std::map<std::size_t, std::vector<unsigned char>> decoded;  // decompressed buffer views by index
+    std::size_t decodedBytes = 0;
+    // What the node walk met, to say why a file gave no triangles.
+    struct {
+        std::size_t nodes = 0, meshes = 0, primitives = 0, surfaces = 0, triangles = 0;
+    } census;
 
     [[noreturn]] void fail(const std::string& where, const std::string& reason) const {
         throw InputError(path + ": " + where + ": " + reason);
@@ -49,10 +64,120 @@ struct Loader {
 
     static std::string at(const char* array, std::size_t index) { return std::string("/") + array + "/" + std::to_string(index); }
 
+    // ---- Buffer views ----------------------------------------------------------------------------
+
+    struct Bytes {
+        const unsigned char* data = nullptr;
+        std::size_t size = 0;
+    };
+
+    // `length` bytes at `offset` of a buffer, checked to lie within it.
+    Bytes slice(int buffer, std::size_t offset, std::size_t length, const std::string& where) const {
+        if (buffer < 0 || std::size_t(buffer) >= model.buffers.size()) {
+            fail(where, "buffer " + std::to_string(buffer) + " does not exist");
+        }
+        if (fallbackBuffers.count(buffer) != 0) {
+            fail(where, "buffer " + std::to_string(buffer) + " is an EXT_meshopt_compression fallback, which has no data");
+        }
+        const std::vector<unsigned char>& data = model.buffers[std::size_t(buffer)].data;
+        if (offset > data.size() || length > data.size() - offset) {
+            fail(where, "extends beyond its buffer of " + std::to_string(data.size()) + " bytes");
+        }
+        return {data.data() + offset, length};
+    }
+
+    // The bytes of a buffer view: a slice of its buffer, or, for an EXT_meshopt_compression view,
+    // the data decoded (once) from the compressed slice its extension names.
+    Bytes bufferView(int index, const std::string& where) {
+        if (index < 0 || std::size_t(index) >= model.bufferViews.size()) {
+            fail(where, "buffer view " + std::to_string(index) + " does not exist");
+        }
+        const tinygltf::BufferView& bv = model.bufferViews[std::size_t(index)];
+        std::string here = at("bufferViews", std::size_t(index));
+        auto meshopt = bv.extensions.find("EXT_meshopt_compression");
+        if (meshopt != bv.extensions.end()) {
+            return decompressed(std::size_t(index), meshopt->second, here + "/extensions/EXT_meshopt_compression");
+        }
+        return slice(bv.buffer, bv.byteOffset, bv.byteLength, here);
+    }
+
+    // A non-negative integral number of an extension object (tinygltf keeps large ones as reals).
+    static bool integer(const tinygltf::Value& object, const char* key, std::size_t& out) {
+        if (!object.Has(key) || !object.Get(key).IsNumber()) {
+            return false;
+        }
+        double x = object.Get(key).GetNumberAsDouble();
+        if (!(x >= 0.0 && x <= 9007199254740992.0 && x == std::floor(x))) {
+            return false;
+        }
+        out = std::size_t(x);
+        return true;
+    }
+
+    static std::string name(const tinygltf::Value& object, const char* key, const char* fallback) {
+        return object.Has(key) && object.Get(key).IsString() ? object.Get(key).Get<std::string>() : fallback;
+    }
+
+    Bytes decompressed(std::size_t index, const tinygltf::Value& ext, const std::string& here) {
+        auto done = decoded.find(index);
+        if (done != decoded.end()) {
+            return {done->second.data(), done->second.size()};
+        }
+        MeshoptView v;
+        std::size_t buffer = 0;
+        std::size_t offset = 0;
+        std::size_t length = 0;
+        if (!ext.IsObject() || !integer(ext, "buffer", buffer) || !integer(ext, "byteLength", length) ||
+            !integer(ext, "byteStride", v.stride) || !integer(ext, "count", v.count) ||
+            (ext.Has("byteOffset") && !integer(ext, "byteOffset", offset)) || buffer > std::size_t(INT32_MAX)) {
+            fail(here, "buffer, byteLength, byteStride and count must be integers of at least 0 (and byteOffset, if given)");
+        }
+        std::string mode = name(ext, "mode", "");
+        if (mode == "ATTRIBUTES") {
+            v.mode = MeshoptMode::Attributes;
+        } else if (mode == "TRIANGLES") {
+            v.mode = MeshoptMode::Triangles;
+        } else if (mode == "INDICES") {
+            v.mode = MeshoptMode::Indices;
+        } else {
+            fail(here + "/mode", "unknown mode " + quote(mode) + " (expected ATTRIBUTES|TRIANGLES|INDICES)");
+        }
+        std::string filter = name(ext, "filter", "NONE");
+        if (filter == "NONE") {
+            v.filter = MeshoptFilter::None;
+        } else if (filter == "OCTAHEDRAL") {
+            v.filter = MeshoptFilter::Octahedral;
+        } else if (filter == "QUATERNION") {
+            v.filter = MeshoptFilter::Quaternion;
+        } else if (filter == "EXPONENTIAL") {
+            v.filter = MeshoptFilter::Exponential;
+        } else {
+            fail(here + "/filter", "unknown filter " + quote(filter) + " (expected NONE|OCTAHEDRAL|QUATERNION|EXPONENTIAL)");
+        }
+        // What the view says it holds is what it must decode to: its accessors are checked against it.
+        const tinygltf::BufferView& bv = model.bufferViews[index];
+        if (v.stride == 0 || bv.byteLength % v.stride != 0 || bv.byteLength / v.stride != v.count) {
+            fail(here, std::to_string(v.count) + " elements of " + std::to_string(v.stride) +
+                           " bytes are not the buffer view's byteLength of " + std::to_string(bv.byteLength));
+        }
+        if (bv.byteLength > kModelFileLimit - decodedBytes) {
+            fail(here, "more than 1 GiB of decompressed data in the file");
+        }
+        Bytes source = slice(int(buffer), offset, length, here);
+        try {
+            std::vector<unsigned char> bytes = decodeMeshopt(v, source.data, source.size);
+            decodedBytes += bytes.size();
+            auto& kept = decoded[index] = std::move(bytes);
+            return {kept.data(), kept.size()};
+        } catch (const DecodeError& e) {
+            fail(here, e.what());
+        }
+    }
+
     // ---- Accessors -------------------------------------------------------------------------------
 
-    // The bytes of element i of an accessor, after checking that all `count` elements lie within
-    // its buffer view and buffer.
+    // The elements of an accessor over some bytes, after checking that all `count` elements lie
+    // within them.
     struct View {
         const unsigned char* data = nullptr;
         std::size_t stride = 0;
@@ -62,43 +187,38 @@ struct Loader {
         bool normalized = false;
     };
 
-    View view(int index, const std::string& where) const {
+    const tinygltf::Accessor& accessor(int index, const std::string& where) const {
         if (index < 0 || std::size_t(index) >= model.accessors.size()) {
             fail(where, "accessor " + std::to_string(index) + " does not exist");
         }
         const tinygltf::Accessor& a = model.accessors[std::size_t(index)];
-        std::string here = at("accessors", std::size_t(index));
         if (a.sparse.isSparse) {
-            fail(here, "sparse accessors are not supported");
+            fail(at("accessors", std::size_t(index)), "sparse accessors are not supported");
         }
-        if (a.bufferView < 0 || std::size_t(a.bufferView) >= model.bufferViews.size()) {
-            fail(here, "no buffer view (bufferView " + std::to_string(a.bufferView) + ")");
-        }
-        const tinygltf::BufferView& bv = model.bufferViews[std::size_t(a.bufferView)];
-        if (bv.buffer < 0 || std::size_t(bv.buffer) >= model.buffers.size()) {
-            fail(at("bufferViews", std::size_t(a.bufferView)), "buffer " + std::to_string(bv.buffer) + " does not exist");
-        }
-        const tinygltf::Buffer& buffer = model.buffers[std::size_t(bv.buffer)];
+        return a;
+    }
+
+    // Accessor `index` over `bytes` (its buffer view's, or a decoder's), from `offset` with
+    // `byteStride` (0: tightly packed).
+    View layout(int index, Bytes bytes, std::size_t offset, std::size_t byteStride, const std::string& viewWhere) const {
+        const tinygltf::Accessor& a = model.accessors[std::size_t(index)];
+        std::string here = at("accessors", std::size_t(index));
         int componentSize = tinygltf::GetComponentSizeInBytes(std::uint32_t(a.componentType));
         int components = tinygltf::GetNumComponentsInType(std::uint32_t(a.type));
         if (componentSize <= 0 || components <= 0) {
             fail(here, "unknown component type or type");
         }
         std::size_t element = std::size_t(componentSize) * std::size_t(components);
-        std::size_t stride = bv.byteStride > 0 ? bv.byteStride : element;
+        std::size_t stride = byteStride > 0 ? byteStride : element;
         if (stride < element) {
-            fail(at("bufferViews", std::size_t(a.bufferView)), "byteStride " + std::to_string(stride) + " is less than an element");
+            fail(viewWhere, "byteStride " + std::to_string(stride) + " is less than an element");
         }
-        if (bv.byteOffset > buffer.data.size() || bv.byteLength > buffer.data.size() - bv.byteOffset) {
-            fail(at("bufferViews", std::size_t(a.bufferView)), "extends beyond its buffer of " +
-                                                                    std::to_string(buffer.data.size()) + " bytes");
-        }
-        if (a.count > 0 && (a.byteOffset > bv.byteLength || (a.count - 1) > (bv.byteLength - a.byteOffset) / stride ||
-                            a.byteOffset + (a.count - 1) * stride + element > bv.byteLength)) {
+        if (a.count > 0 && (offset > bytes.size || (a.count - 1) > (bytes.size - offset) / stride ||
+                            offset + (a.count - 1) * stride + element > bytes.size)) {
             fail(here, std::to_string(a.count) + " elements extend beyond buffer view " + std::to_string(a.bufferView));
         }
         View v;
-        v.data = buffer.data.data() + bv.byteOffset + a.byteOffset;
+        v.data = bytes.data + offset;
         v.stride = stride;
         v.count = a.count;
         v.componentType = a.componentType;
@@ -107,31 +227,76 @@ struct Loader {
         return v;
     }
 
-    // Float vectors of N components (positions, normals; texture coordinates may be normalized
-    // integers), every value finite.
+    View view(int index, const std::string& where) {
+        const tinygltf::Accessor& a = accessor(index, where);
+        if (a.bufferView < 0 || std::size_t(a.bufferView) >= model.bufferViews.size()) {
+            fail(at("accessors", std::size_t(index)), "no buffer view (bufferView " + std::to_string(a.bufferView) + ")");
+        }
+        Bytes bytes = bufferView(a.bufferView, at("accessors", std::size_t(index)));
+        return layout(index, bytes, a.byteOffset, model.bufferViews[std::size_t(a.bufferView)].byteStride,
+                      at("bufferViews", std::size_t(a.bufferView)));
+    }
+
+    // One component as a number, by the glTF rules: normalized integers map to [0, 1] (unsigned)
+    // or [-1, 1] (signed; the most negative value is clamped to -1, so that 0 stays exact), other
+    // integers are taken as they are (KHR_mesh_quantization's positions and texture coordinates).
+    static float component(const unsigned char* e, int type, bool normalized) {
+        switch (type) {
+            case TINYGLTF_COMPONENT_TYPE_BYTE: {
+                auto x = std::int8_t(e[0]);
+                return normalized ? std::max(float(x) / 127.0f, -1.0f) : float(x);
+            }
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+                return normalized ? float(e[0]) / 255.0f : float(e[0]);
+            case TINYGLTF_COMPONENT_TYPE_SHORT: {
+                std::int16_t x;
+                std::memcpy(&x, e, 2);
+                return normalized ? std::max(float(x) / 32767.0f, -1.0f) : float(x);
+            }
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+                std::uint16_t x;
+                std::memcpy(&x, e, 2);
+                return normalized ? float(x) / 65535.0f : float(x);
+            }
+            default: {
+                float x;
+                std::memcpy(&x, e, 4);
+                return x;
+            }
+        }
+    }
+
+    // The component types an attribute may have: floats, and KHR_mesh_quantization's bytes and
+    // shorts (normals and tangents only signed and normalized, being unit vectors).
+    static bool allowedType(const std::string& attribute, int type, bool normalized) {
+        if (type == TINYGLTF_COMPONENT_TYPE_FLOAT) {
+            return true;
+        }
+        if (attribute == "NORMAL" || attribute == "TANGENT") {
+            return normalized && (type == TINYGLTF_COMPONENT_TYPE_BYTE || type == TINYGLTF_COMPONENT_TYPE_SHORT);
+        }
+        return type == TINYGLTF_COMPONENT_TYPE_BYTE || type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+               type == TINYGLTF_COMPONENT_TYPE_SHORT || type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+    }
+
+    // Vectors of N components of attribute `name` (accessor `index`), every value finite.
     template <int N>
-    std::vector<glm::vec<N, float>> floats(int index, const std::string& where) const {
-        View v = view(index, where);
+    std::vector<glm::vec<N, float>> attribute(const View& v, int index, const std::string& name) const {
         std::string here = at("accessors", std::size_t(index));
         if (v.components != N) {
             fail(here, "expected " + std::to_string(N) + " components, got " + std::to_string(v.components));
         }
+        if (!allowedType(name, v.componentType, v.normalized)) {
+            fail(here, name + (name == "NORMAL" || name == "TANGENT"
+                                   ? " must be floats, or normalized signed bytes or shorts"
+                                   : " must be floats, bytes or shorts"));
+        }
+        int size = tinygltf::GetComponentSizeInBytes(std::uint32_t(v.componentType));
         std::vector<glm::vec<N, float>> out(v.count);
         for (std::size_t i = 0; i < v.count; ++i) {
             const unsigned char* e = v.data + i * v.stride;
             for (int c = 0; c < N; ++c) {
-                float x = 0.0f;
-                if (v.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT) {
-                    std::memcpy(&x, e + 4 * c, 4);
-                } else if (v.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && v.normalized) {
-                    x = float(e[c]) / 255.0f;
-                } else if (v.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT && v.normalized) {
-                    std::uint16_t u;
-                    std::memcpy(&u, e + 2 * c, 2);
-                    x = float(u) / 65535.0f;
-                } else {
-                    fail(here, "expected floats (or normalized unsigned integers)");
-                }
+                float x = component(e + c * size, v.componentType, v.normalized);
                 if (!std::isfinite(x)) {
                     fail(here, "element " + std::to_string(i) + " is not finite");
                 }
@@ -141,7 +306,7 @@ struct Loader {
         return out;
     }
 
-    std::vector<std::uint32_t> indices(int index, std::size_t vertices, const std::string& where) const {
+    std::vector<std::uint32_t> indices(int index, std::size_t vertices, const std::string& where) {
         View v = view(index, where);
         std::string here = at("accessors", std::size_t(index));
         if (v.components != 1) {
@@ -214,7 +379,9 @@ struct Loader {
         std::string bytes(image.image.begin(), image.image.end());
         if (bytes.empty() && !image.uri.empty() && image.uri.rfind("data:", 0) != 0) {
             // tinygltf keeps going past an external image it could not read: read it again for the reason.
-            bytes = read(folderOf(path) + image.uri, "image");
+            std::string file = namedFile(folderOf(path), image.uri);
+            checkNamedFile(path, file, "image", options.paths);
+            bytes = read(file, "image");
         }
         cached = addImageTexture(scene, bytes, wrapS, wrapT, path + ": " + at("images", std::size_t(t.source)), encoding);
         return cached;
@@ -359,56 +526,156 @@ struct Loader {
 
     // ---- Geometry ---------------------------------------------------------------------------------
 
-    void primitive(const tinygltf::Primitive& p, const glm::mat4& transform, const std::string& here) {
-        if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != TINYGLTF_MODE_TRIANGLE_STRIP && p.mode != TINYGLTF_MODE_TRIANGLE_FAN) {
-            return;  // points and lines have no surface
-        }
-        auto attribute = [&](const char* name) {
+    // POSITION, NORMAL, TANGENT and TEXCOORD_0 into the mesh, each from the View that `viewOf`
+    // gives for (name, accessor): the accessor's buffer view, or a decoded Draco attribute.
+    template <typename ViewOf>
+    void readAttributes(const tinygltf::Primitive& p, Mesh& mesh, const std::string& here, ViewOf viewOf) {
+        auto accessorOf = [&](const char* name) {
             auto it = p.attributes.find(name);
             return it == p.attributes.end() ? -1 : it->second;
         };
-        int position = attribute("POSITION");
+        int position = accessorOf("POSITION");
         if (position < 0) {
             fail(here, "a primitive without POSITION");
         }
-        Mesh mesh;
-        std::vector<glm::vec3> positions = floats<3>(position, here);
-        mesh.positions = positions;
-        if (attribute("NORMAL") >= 0) {
-            mesh.normals = floats<3>(attribute("NORMAL"), here);
+        mesh.positions = attribute<3>(viewOf("POSITION", position), position, "POSITION");
+        if (int normal = accessorOf("NORMAL"); normal >= 0) {
+            mesh.normals = attribute<3>(viewOf("NORMAL", normal), normal, "NORMAL");
         }
-        if (attribute("TEXCOORD_0") >= 0) {
-            mesh.texcoords = floats<2>(attribute("TEXCOORD_0"), here);
+        if (int tangent = accessorOf("TANGENT"); tangent >= 0) {
+            mesh.tangents = attribute<4>(viewOf("TANGENT", tangent), tangent, "TANGENT");
         }
-        if ((!mesh.normals.empty() && mesh.normals.size() != positions.size()) ||
-            (!mesh.texcoords.empty() && mesh.texcoords.size() != positions.size())) {
-            fail(here, "NORMAL or TEXCOORD_0 has another count than POSITION");
+        if (int texcoord = accessorOf("TEXCOORD_0"); texcoord >= 0) {
+            mesh.texcoords = attribute<2>(viewOf("TEXCOORD_0", texcoord), texcoord, "TEXCOORD_0");
         }
-        std::vector<std::uint32_t> order;
+        std::size_t n = mesh.positions.size();
+        if ((!mesh.normals.empty() && mesh.normals.size() != n) || (!mesh.tangents.empty() && mesh.tangents.size() != n) ||
+            (!mesh.texcoords.empty() && mesh.texcoords.size() != n)) {
+            fail(here, "NORMAL, TANGENT or TEXCOORD_0 has another count than POSITION");
+        }
+    }
+
+    // The vertex order of a plain primitive: its indices, or 0, 1, 2, ...
+    std::vector<std::uint32_t> vertexOrder(const tinygltf::Primitive& p, std::size_t vertices, const std::string& here) {
         if (p.indices >= 0) {
-            order = indices(p.indices, positions.size(), here);
-        } else {
-            order.resize(positions.size());
-            for (std::uint32_t i = 0; i < order.size(); ++i) {
-                order[i] = i;
-            }
+            return indices(p.indices, vertices, here);
         }
-        if (p.mode == TINYGLTF_MODE_TRIANGLES) {
-            for (std::size_t i = 0; i + 2 < order.size(); i += 3) {
-                mesh.triangles.emplace_back(order[i], order[i + 1], order[i + 2]);
+        std::vector<std::uint32_t> order(vertices);
+        for (std::uint32_t i = 0; i < order.size(); ++i) {
+            order[i] = i;
+        }
+        return order;
+    }
+
+    // A KHR_draco_mesh_compression primitive: its faces and the attributes the extension names come
+    // from the Draco mesh (as the accessors' component types); others from their accessors.
+    std::vector<std::uint32_t> dracoGeometry(const tinygltf::Primitive& p, const tinygltf::Value& ext, Mesh& mesh,
+                                             const std::string& here) {
+        if (!ext.IsObject() || !ext.Get("bufferView").IsInt() || !ext.Get("attributes").IsObject()) {
+            fail(here, "needs a bufferView and attributes");
+        }
+        Bytes bytes = bufferView(ext.Get("bufferView").Get<int>(), here + "/bufferView");
+        std::unique_ptr<DracoMesh> draco;
+        try {
+            draco = std::make_unique<DracoMesh>(bytes.data, bytes.size);
+        } catch (const DecodeError& e) {
+            fail(here, e.what());
+        }
+        const tinygltf::Value& ids = ext.Get("attributes");
+        std::vector<unsigned char> values;
+        readAttributes(p, mesh, here, [&](const char* name, int index) {
+            if (!ids.Has(name)) {
+                return view(index, here);
             }
-        } else if (p.mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+            std::string where = here + "/attributes/" + name;
+            const tinygltf::Value& id = ids.Get(name);
+            if (!id.IsInt() || id.Get<int>() < 0) {
+                fail(where, "not a Draco attribute id");
+            }
+            const tinygltf::Accessor& a = accessor(index, here);
+            if (a.count != draco->points()) {
+                fail(at("accessors", std::size_t(index)), "count " + std::to_string(a.count) + ", but the Draco mesh has " +
+                                                              std::to_string(draco->points()) + " points");
+            }
+            try {
+                values = draco->attribute(std::uint32_t(id.Get<int>()), a.componentType,
+                                          tinygltf::GetNumComponentsInType(std::uint32_t(a.type)));
+            } catch (const DecodeError& e) {
+                fail(where, e.what());
+            }
+            return layout(index, {values.data(), values.size()}, 0, 0, where);
+        });
+        std::vector<std::uint32_t> order;
+        try {
+            for (glm::uvec3 t : draco->triangles()) {
+                order.insert(order.end(), {t.x, t.y, t.z});
+            }
+        } catch (const DecodeError& e) {
+            fail(here, e.what());
+        }
+        return order;
+    }
+
+    // Triangles from a vertex order by the primitive's mode: lists, strips (every other one turned
+    // back to keep the winding) and fans.
+    static std::vector<glm::uvec3> assemble(int mode, const std::vector<std::uint32_t>& order) {
+        std::vector<glm::uvec3> triangles;
+        if (mode == TINYGLTF_MODE_TRIANGLES) {
+            for (std::size_t i = 0; i + 2 < order.size(); i += 3) {
+                triangles.emplace_back(order[i], order[i + 1], order[i + 2]);
+            }
+        } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
             for (std::size_t i = 0; i + 2 < order.size(); ++i) {
-                mesh.triangles.push_back(i % 2 == 0 ? glm::uvec3(order[i], order[i + 1], order[i + 2])
-                                                    : glm::uvec3(order[i + 1], order[i], order[i + 2]));
+                triangles.push_back(i % 2 == 0 ? glm::uvec3(order[i], order[i + 1], order[i + 2])
+                                                : glm::uvec3(order[i + 1], order[i], order[i + 2]));
             }
         } else {
             for (std::size_t i = 1; i + 1 < order.size(); ++i) {
-                mesh.triangles.emplace_back(order[0], order[i], order[i + 1]);
+                triangles.emplace_back(order[0], order[i], order[i + 1]);
             }
         }
+        return triangles;
+    }
+
+    void primitive(const tinygltf::Primitive& p, const glm::mat4& transform, const std::string& here) {
+        census.primitives += 1;
+        if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != TINYGLTF_MODE_TRIANGLE_STRIP && p.mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+            return;  // points and lines have no surface
+        }
+        census.surfaces += 1;
+        Mesh mesh;
+        auto draco = p.extensions.find("KHR_draco_mesh_compression");
+        if (draco != p.extensions.end()) {
+            // Draco decodes faces: a triangle list whatever the mode says.
+            mesh.triangles = assemble(TINYGLTF_MODE_TRIANGLES,
+                                      dracoGeometry(p, draco->second, mesh, here + "/extensions/KHR_draco_mesh_compression"));
+        } else {
+            readAttributes(p, mesh, here, [&](const char*, int index) { return view(index, here); });
+            mesh.triangles = assemble(p.mode, vertexOrder(p, mesh.positions.size(), here));
+        }
+        if (mesh.triangles.empty()) {
+            return;
+        }
+        census.triangles += mesh.triangles.size();
         mesh.materials.assign(mesh.triangles.size(), material(p.material, here + "/material"));
         scene.addMesh(mesh, transform);
+    }
+
+    // Why a file that parsed gave no triangles, for its message.
+    std::string noTriangles() const {
+        if (census.nodes == 0) {
+            return model.scenes.empty() ? "the file has no nodes" : "its scene has no nodes";
+        }
+        if (census.meshes == 0) {
+            return "none of its nodes has a mesh";
+        }
+        if (census.primitives == 0) {
+            return "its meshes have no primitives";
+        }
+        if (census.surfaces == 0) {
+            return "its primitives are points or lines only";
+        }
+        return "its triangle primitives have fewer than 3 vertices";
     }
 
     static glm::mat4 localTransform(const tinygltf::Node& n) {
@@ -501,7 +768,7 @@ struct Loader {
             Light& spot = scene.lights.back();
             spot.power = colour * (intensity * 2.0f * PI * spot.spotOuter * spot.falloffMean);
         } else {
-            fail(where + "/type", "unknown light type '" + l.type + "'");
+            fail(where + "/type", "unknown light type " + quote(l.type));
         }
         extras.lights += 1;
     }
@@ -558,7 +825,9 @@ struct Loader {
             }
             const tinygltf::Node& n = model.nodes[std::size_t(v.node)];
             glm::mat4 world = v.parent * localTransform(n);
+            census.nodes += 1;
             if (n.mesh >= 0) {
+                census.meshes += 1;
                 if (std::size_t(n.mesh) >= model.meshes.size()) {
                     fail(here + "/mesh", "mesh " + std::to_string(n.mesh) + " does not exist");
                 }
@@ -579,19 +848,28 @@ struct Loader {
     }
 };
 
-// tinygltf reads external buffers and images through the loader's file reader.
+// tinygltf reads external buffers and images through the loader's file reader, each checked to lie
+// in the model's folder tree first. The first refusal or read error is kept whole for the message
+// (tinygltf would wrap it in its own words).
 struct FileSystem {
     const FileReader& read;
-    std::string folder;
+    const std::string& model;
+    const PathPolicy& paths;
+    std::string error;
 };
 
 bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
     auto* fs = static_cast<FileSystem*>(user);
     try {
-        std::string bytes = fs->read(path, "file the glTF references");
+        std::string file = namedFile("", path);
+        checkNamedFile(fs->model, file, "file", fs->paths);
+        std::string bytes = fs->read(file, "buffer or image");
         out->assign(bytes.begin(), bytes.end());
         return true;
     } catch (const InputError& e) {
+        if (fs->error.empty()) {
+            fs->error = e.what();
+        }
         *err += std::string(e.what()) + "\n";
         return false;
     }
@@ -602,8 +880,20 @@ std::string expandPath(const std::string& path, void*) { return path; }
 bool writeWholeFile(std::string*, const std::string&, const std::vector<unsigned char>&, void*) { return false; }
 
 // Images stay encoded here; the material that uses one decodes it (texture_loader.cpp).
-bool keepImage(tinygltf::Image* image, const int, std::string*, std::string*, int, int, const unsigned char* bytes,
-               int size, void*) {
+// tinygltf hands over an image in a buffer view as a pointer and the view's byteLength, unchecked
+// against the buffer (which it has read already, into the model it is filling: `user`).
+bool keepImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
+               const unsigned char* bytes, int size, void* user) {
+    if (image->bufferView >= 0) {
+        const auto* model = static_cast<const tinygltf::Model*>(user);
+        const tinygltf::BufferView& bv = model->bufferViews[std::size_t(image->bufferView)];  // checked by tinygltf
+        const std::vector<unsigned char>& data = model->buffers[std::size_t(bv.buffer)].data;
+        if (bv.byteOffset > data.size() || bv.byteLength > data.size() - bv.byteOffset) {
+            *err += "/images/" + std::to_string(index) + ": buffer view " + std::to_string(image->bufferView) +
+                    " extends beyond its buffer of " + std::to_string(data.size()) + " bytes\n";
+            return false;
+        }
+    }
     image->image.assign(bytes, bytes + std::max(size, 0));
     image->as_is = true;
     return true;
@@ -613,22 +903,28 @@ bool keepImage(tinygltf::Image* image, const int, std::string*, std::string*, in
 
 ModelExtras addGltfModel(Scene& scene, const std::string& path, const std::string& bytes, const ModelOptions& options,
                          const FileReader& read) {
-    Loader loader{scene, path, options, read, {}, {}, {}, NONE, {}};
-    tinygltf::TinyGLTF gltf;
-    FileSystem fs{read, folderOf(path)};
-    gltf.SetFsCallbacks({fileExists, expandPath, readWholeFile, writeWholeFile, &fs});
-    gltf.SetImageLoader(keepImage, nullptr);
-    std::string err;
-    std::string warn;
-    bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
+    Loader loader{scene, path, options, read, {}, {}, {}, NONE, {}, {}, {}, 0, {}};
     if (bytes.size() > 0xffffffffu) {
         throw InputError(path + ": larger than 4 GiB");
     }
-    std::string base = fs.folder.empty() ? "." : fs.folder;
-    bool ok = binary ? gltf.LoadBinaryFromMemory(&loader.model, &err, &warn,
-                                                 reinterpret_cast<const unsigned char*>(bytes.data()),
-                                                 unsigned(bytes.size()), base)
-                     : gltf.LoadASCIIFromString(&loader.model, &err, &warn, bytes.data(), unsigned(bytes.size()), base);
+    GltfDocument doc = prepareGltf(path, bytes);
+    loader.fallbackBuffers = doc.fallbackBuffers;
+    tinygltf::TinyGLTF gltf;
+    FileSystem fs{read, path, options.paths, {}};
+    gltf.SetFsCallbacks({fileExists, expandPath, readWholeFile, writeWholeFile, &fs});
+    gltf.SetImageLoader(keepImage, &loader.model);
+    std::string err;
+    std::string warn;
+    std::string folder = folderOf(path);
+    std::string base = folder.empty() ? "." : folder;
+    const std::string& data = doc.bytes;
+    bool ok = doc.binary ? gltf.LoadBinaryFromMemory(&loader.model, &err, &warn,
+                                                     reinterpret_cast<const unsigned char*>(data.data()),
+                                                     unsigned(data.size()), base)
+                         : gltf.LoadASCIIFromString(&loader.model, &err, &warn, data.data(), unsigned(data.size()), base);
+    if (!ok && !fs.error.empty()) {
+        throw InputError(fs.error);
+    }
     if (!ok) {
         std::string first = err.substr(0, err.find('\n'));
         throw InputError(path + ": " + (first.empty() ? std::string("not a glTF file") : first));
@@ -636,12 +932,15 @@ ModelExtras addGltfModel(Scene& scene, const std::string& path, const std::strin
     for (std::size_t i = 0; i < loader.model.extensionsRequired.size(); ++i) {
         const std::string& e = loader.model.extensionsRequired[i];
         if (std::none_of(std::begin(kSupportedRequired), std::end(kSupportedRequired), [&](const char* s) { return e == s; })) {
-            loader.fail("/extensionsRequired/" + std::to_string(i), "the required extension '" + e + "' is not supported");
+            loader.fail("/extensionsRequired/" + std::to_string(i), "the required extension " + quote(e) + " is not supported");
         }
     }
     loader.materials.assign(loader.model.materials.size(), NONE);
     loader.textures.assign(loader.model.textures.size(), {NONE, NONE});
     loader.nodes();
+    if (loader.census.triangles == 0) {
+        loader.fail("no triangles", loader.noTriangles());
+    }
     return loader.extras;
 }
 

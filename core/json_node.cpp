@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "error.h"
+
 namespace photon {
 namespace {
 
@@ -48,6 +50,12 @@ std::string essentialPart(std::string message) {
     dropThrough("[json.exception.", "] ");
     dropThrough("parse error", ": ");
     dropThrough("syntax error while parsing ", " - ");
+    // The text it quotes ("number overflow parsing '1e999'") may be a whole 100 KB number.
+    std::size_t open = message.find('\'');
+    std::size_t close = message.rfind('\'');
+    if (open != std::string::npos && close > open) {
+        message = message.substr(0, open) + quote(message.substr(open + 1, close - open - 1)) + message.substr(close + 1);
+    }
     return message;
 }
 

@@ -12,8 +12,8 @@ namespace photon {
 struct Mesh {
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;     // one per vertex, or none
+    std::vector<glm::vec4> tangents;  // one per vertex (xyz, w the bitangent sign), or none
     std::vector<glm::vec2> texcoords;   // one per vertex (s right, t down), or none
-    std::vector<glm::vec4> tangents;    // one per vertex (xyz, w the bitangent sign), or none
     std::vector<glm::uvec3> triangles;  // vertex indices, counter-clockwise about the front
     std::vector<std::uint32_t> materials;  // one per triangle
 };

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <filesystem>
 
 #include "error.h"
 #include "input_file.h"
@@ -26,6 +27,53 @@ std::string lowerExtension(const std::string& path) {
 std::string folderOf(const std::string& path) {
     std::size_t slash = path.find_last_of('/');
     return slash == std::string::npos ? "" : path.substr(0, slash + 1);
+}
+
+std::string namedFile(const std::string& folder, const std::string& name) {
+    std::string file = name;
+    std::replace(file.begin(), file.end(), '\\', '/');
+    if (file.empty() || file[0] != '/') {
+        file = folder + file;
+    }
+    return std::filesystem::path(file).lexically_normal().generic_string();
+}
+
+namespace {
+
+// Whether `file` lies in `folder`'s tree once both are absolute with every symbolic link
+// followed: a comparison of path components, so that /models/a is not taken to be inside
+// /models/ab.
+bool inside(const std::string& folder, const std::string& file) {
+    namespace fs = std::filesystem;
+    std::error_code error;
+    fs::path root = fs::weakly_canonical(fs::absolute(folder.empty() ? "." : folder, error), error);
+    if (error) {
+        return false;
+    }
+    fs::path target = fs::weakly_canonical(fs::absolute(file, error), error);
+    if (error) {
+        return false;
+    }
+    auto t = target.begin();
+    for (const fs::path& part : root) {
+        if (part.empty()) {
+            continue;  // a trailing separator
+        }
+        if (t == target.end() || *t != part) {
+            return false;
+        }
+        ++t;
+    }
+    return true;
+}
+
+}  // namespace
+
+void checkNamedFile(const std::string& modelPath, const std::string& file, const char* what, const PathPolicy& paths) {
+    if (!paths.allowOutside && !inside(folderOf(modelPath), file)) {
+        throw InputError(modelPath + ": " + what + " " + quote(file) +
+                         " lies outside the model's folder (--allow-outside-paths reads it)");
+    }
 }
 
 FileReader defaultFileReader() {
@@ -66,17 +114,18 @@ ModelExtras addModelFile(Scene& scene, const std::string& path, const ModelOptio
     return addModel(scene, path, read(path, "model file"), options, read);
 }
 
-Scene loadModelScene(const std::string& path) {
+Scene loadModelScene(const std::string& path, const PathPolicy& paths) {
     FileReader read = defaultFileReader();
-    return loadModelScene(path, read(path, "model file"), read);
+    return loadModelScene(path, read(path, "model file"), read, paths);
 }
 
-Scene loadModelScene(const std::string& path, const std::string& bytes, const FileReader& read) {
+Scene loadModelScene(const std::string& path, const std::string& bytes, const FileReader& read, const PathPolicy& paths) {
     Scene scene;
     std::size_t slash = path.find_last_of('/');
     scene.name = slash == std::string::npos ? path : path.substr(slash + 1);
     ModelOptions options;
     options.cameraAndLights = true;
+    options.paths = paths;
     ModelExtras extras = addModel(scene, path, bytes, options, read);
     // The camera, if the file has none, frames the bounds: from the front, a little above, the
     // bounding sphere filling the vertical field of view.

@@ -58,7 +58,7 @@ void checkObjText(const std::string& path, const std::string& text) {
                 char* stop = nullptr;
                 double x = std::strtod(token.c_str(), &stop);
                 if (stop != token.c_str() + token.size() || !std::isfinite(x) || std::abs(x) > 3.4e38) {
-                    fail("'" + token + "' is not a finite number");
+                    fail(quote(token) + " is not a finite number");
                 }
                 numbers += 1;
             }
@@ -79,7 +79,7 @@ void checkObjText(const std::string& path, const std::string& text) {
                     slash = next == std::string::npos ? next : next + 1;
                     if (index.empty()) {
                         if (part == 0) {
-                            fail("face corner '" + token + "' has no vertex index");
+                            fail("face corner " + quote(token) + " has no vertex index");
                         }
                         continue;
                     }
@@ -88,8 +88,8 @@ void checkObjText(const std::string& path, const std::string& text) {
                     const char* names[3] = {"vertex", "texture coordinate", "normal"};
                     long long n = static_cast<long long>(counts[part]);
                     if (stop != index.c_str() + index.size() || i == 0 || i > n || i < -n) {
-                        fail(std::string(names[part]) + " index '" + index + "' out of range (" + std::to_string(n) +
-                             " defined before this line)");
+                        fail(std::string(names[part]) + " index " + quote(index) + " out of range (" +
+                             std::to_string(n) + " defined before this line)");
                     }
                 }
             }
@@ -100,15 +100,25 @@ void checkObjText(const std::string& path, const std::string& text) {
     }
 }
 
-// MTL files through the loader's file reader, relative to the OBJ file.
+// A UTF-8 byte order mark (Windows editors write one) is not part of the first line.
+std::string withoutBom(std::string text) {
+    if (text.compare(0, 3, "\xEF\xBB\xBF") == 0) {
+        text.erase(0, 3);
+    }
+    return text;
+}
+
+// MTL files through the loader's file reader, relative to the OBJ file and inside its folder tree.
 class MtlReader final : public tinyobj::MaterialReader {
 public:
-    MtlReader(std::string folder, const FileReader& read) : folder_(std::move(folder)), read_(read) {}
+    MtlReader(const std::string& objPath, const FileReader& read, const PathPolicy& paths)
+        : objPath_(objPath), read_(read), paths_(paths) {}
 
     bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
                     std::map<std::string, int>* map, std::string* warn, std::string* err) override {
-        std::string path = folder_ + name;
-        std::string text = read_(path, "MTL file");  // throws InputError naming the file
+        std::string path = namedFile(folderOf(objPath_), name);
+        checkNamedFile(objPath_, path, "mtllib", paths_);
+        std::string text = withoutBom(read_(path, "MTL file"));  // throws InputError naming the file
         std::istringstream in(text);
         tinyobj::LoadMtl(map, materials, &in, warn, err);
         files.push_back(path);
@@ -118,8 +128,9 @@ public:
     std::vector<std::string> files;
 
 private:
-    std::string folder_;
+    const std::string& objPath_;
     const FileReader& read_;
+    const PathPolicy& paths_;
 };
 
 glm::vec3 clampedColour(const tinyobj::real_t* c) {
@@ -182,8 +193,9 @@ Material fromMtl(const tinyobj::material_t& m) {
 
 }  // namespace
 
-ModelExtras addObjModel(Scene& scene, const std::string& path, const std::string& text, const ModelOptions& options,
+ModelExtras addObjModel(Scene& scene, const std::string& path, const std::string& file, const ModelOptions& options,
                         const FileReader& read) {
+    std::string text = withoutBom(file);
     checkObjText(path, text);
     tinyobj::attrib_t attrib;
     std::vector<tinyobj::shape_t> shapes;
@@ -191,7 +203,7 @@ ModelExtras addObjModel(Scene& scene, const std::string& path, const std::string
     std::string warn;
     std::string err;
     std::istringstream in(text);
-    MtlReader mtl(folderOf(path), read);
+    MtlReader mtl(path, read, options.paths);
     bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &in, &mtl, true, false);
     if (!ok) {
         throw InputError(path + ": " + (err.empty() ? std::string("not an OBJ file") : err.substr(0, err.find('\n'))));
@@ -205,7 +217,8 @@ ModelExtras addObjModel(Scene& scene, const std::string& path, const std::string
             Material m = fromMtl(materials[i]);
             std::string folder = folderOf(mtl.files.empty() ? path : mtl.files.front());
             auto image = [&](const std::string& name, TextureEncoding encoding) {
-                std::string file = folder + name;
+                std::string file = namedFile(folder, name);
+                checkNamedFile(path, file, "texture map", options.paths);
                 return addImageTexture(scene, read(file, "texture"), WRAP_REPEAT, WRAP_REPEAT, file, encoding);
             };
             if (!materials[i].diffuse_texname.empty() && (m.type == MATERIAL_DIFFUSE || m.type == MATERIAL_GLOSSY ||
@@ -295,7 +308,7 @@ ModelExtras addObjModel(Scene& scene, const std::string& path, const std::string
         }
     }
     if (mesh.triangles.empty()) {
-        throw InputError(path + ": no faces");
+        throw InputError(path + ": no triangles: the file has no faces");
     }
     scene.addMesh(mesh, options.transform);
     return {};

@@ -155,7 +155,7 @@ std::uint32_t materialOf(const Scene& scene, const Node& object) {
     Node ref = object["material"];
     std::uint32_t material = scene.findMaterial(ref.string());
     if (material == NONE) {
-        ref.fail("unknown material '" + ref.string() + "'");
+        ref.fail("unknown material " + quote(ref.string()));
     }
     return material;
 }
@@ -164,7 +164,7 @@ std::uint32_t materialOf(const Scene& scene, const Node& object) {
 std::uint32_t nonEmittingMaterialOf(const Scene& scene, const Node& object) {
     std::uint32_t material = materialOf(scene, object);
     if (!isBlack(scene.materials[material].emission)) {
-        object["material"].fail("'" + object["material"].string() + "' emits, and only triangles and meshes emit " +
+        object["material"].fail(quote(object["material"].string()) + " emits, and only triangles and meshes emit " +
                                 "(a sphere or quad that shines is a light: see \"lights\")");
     }
     return material;
@@ -223,9 +223,10 @@ glm::mat4 readTransform(const Node& node) {
 
 // A model file as an object: its path relative to the scene file, its file's materials or one of
 // the scene's, and a transform.
-void readMesh(Scene& scene, const Node& node, const std::string& folder, const FileReader& read) {
+void readMesh(Scene& scene, const Node& node, const std::string& folder, const FileReader& read, const PathPolicy& paths) {
     node.allowKeys({"type", "file", "material", "transform"});
     ModelOptions options;
+    options.paths = paths;
     if (node.has("material")) {
         options.material = materialOf(scene, node);
     }
@@ -238,7 +239,7 @@ void readMesh(Scene& scene, const Node& node, const std::string& folder, const F
         file.fail("must not be empty");
     }
     if (!isModelFile(name)) {
-        file.fail("'" + name + "' is not a model file Photon reads (.obj, .gltf, .glb)");
+        file.fail(quote(name) + " is not a model file Photon reads (.obj, .gltf, .glb)");
     }
     std::string path = !name.empty() && name[0] == '/' ? name : folder + name;
     try {
@@ -248,7 +249,7 @@ void readMesh(Scene& scene, const Node& node, const std::string& folder, const F
     }
 }
 
-void readObject(Scene& scene, const Node& node, const std::string& folder, const FileReader& read) {
+void readObject(Scene& scene, const Node& node, const std::string& folder, const FileReader& read, const PathPolicy& paths) {
     const std::string& type = node["type"].string();
     if (type == "sphere") {
         node.allowKeys({"type", "material", "center", "radius"});
@@ -282,7 +283,7 @@ void readObject(Scene& scene, const Node& node, const std::string& folder, const
         vertices.checkSpan(b - a, c - a, "degenerate triangle: the vertices are collinear or coincide");
         scene.addTriangle(a, b, c, material);
     } else if (type == "mesh") {
-        readMesh(scene, node, folder, read);
+        readMesh(scene, node, folder, read, paths);
     } else if (type == "box") {
         node.allowKeys({"type", "material", "min", "max"});
         std::uint32_t material = nonEmittingMaterialOf(scene, node);
@@ -304,7 +305,7 @@ void readObject(Scene& scene, const Node& node, const std::string& folder, const
             scene.addQuad(far, edge1, edge2, material);
         }
     } else {
-        node["type"].fail("unknown object type '" + type + "' (expected sphere|plane|quad|triangle|box|mesh)");
+        node["type"].fail("unknown object type " + quote(type) + " (expected sphere|plane|quad|triangle|box|mesh)");
     }
 }
 
@@ -333,7 +334,7 @@ void readLight(Scene& scene, const Node& node) {
             glm::vec3 axis = node["direction"].direction();
             scene.addHemisphereLight(position, axis, readPower(node["power"]));
         } else {
-            node["emission"].fail("unknown emission '" + emission + "' (expected isotropic|hemisphere)");
+            node["emission"].fail("unknown emission " + quote(emission) + " (expected isotropic|hemisphere)");
         }
     } else if (type == "spot") {
         node.allowKeys({"type", "power", "position", "direction", "angle", "falloff_start"});
@@ -364,7 +365,7 @@ void readLight(Scene& scene, const Node& node) {
         node.checkSpan(edgeU, edgeV, "edge_u and edge_v are parallel or zero (area at most 1e-12)");
         scene.addQuadLight(corner, edgeU, edgeV, readPower(node["power"]));
     } else {
-        node["type"].fail("unknown light type '" + type + "' (expected point|spot|sphere|quad)");
+        node["type"].fail("unknown light type " + quote(type) + " (expected point|spot|sphere|quad)");
     }
 }
 
@@ -413,7 +414,7 @@ void readRender(const Node& node, RenderSettings& s) {
 }  // namespace
 
 Scene loadSceneJson(const std::string& text, const std::string& sourceName, const std::string& folder,
-                    const FileReader& read) {
+                    const FileReader& read, const PathPolicy& paths) {
     const json document = parseJson(text, sourceName);
     const Node root(document, "", sourceName);
     root.allowKeys({"name", "camera", "background", "materials", "objects", "lights", "render"});
@@ -428,9 +429,13 @@ Scene loadSceneJson(const std::string& text, const std::string& sourceName, cons
     }
     readMaterials(scene, root["materials"]);
     for (const Node& object : root["objects"].elements()) {
-        readObject(scene, object, folder, read);
+        readObject(scene, object, folder, read, paths);
     }
     readLights(scene, root["lights"]);
+    // Area lights have added their surfaces by now.
+    if (scene.spheres.empty() && scene.planes.empty() && scene.quads.empty() && scene.triangles.empty()) {
+        root["objects"].fail("the scene has no geometry: nothing for light to fall on or the camera to see");
+    }
     if (root.has("render")) {
         readRender(root["render"], scene.render);
     }
@@ -438,11 +443,11 @@ Scene loadSceneJson(const std::string& text, const std::string& sourceName, cons
     return scene;
 }
 
-Scene loadSceneFile(const std::string& path) {
+Scene loadSceneFile(const std::string& path, const PathPolicy& paths) {
     if (isModelFile(path)) {
-        return loadModelScene(path);
+        return loadModelScene(path, paths);
     }
-    return loadSceneJson(readInputFile(path, kSceneFileLimit, "scene file"), path, folderOf(path), defaultFileReader());
+    return loadSceneJson(readInputFile(path, kSceneFileLimit, "scene file"), path, folderOf(path), defaultFileReader(), paths);
 }
 
 Scene defaultScene() { return loadSceneJson(kEmbeddedCornellJson, "<embedded cornell.json>", "", defaultFileReader()); }

@@ -175,7 +175,7 @@ const SettingSpec* findSetting(const std::string& keyOrFlag) {
 void setSetting(RenderSettings& settings, const SettingSpec& spec, const std::string& text, const std::string& where) {
     if (spec.kind == SettingKind::Choice) {
         if (!spec.setName(settings, text)) {
-            fail(where, "unknown value '" + text + "' (expected " + spec.choices + ")");
+            fail(where, "unknown value " + quote(text) + " (expected " + spec.choices + ")");
         }
         markGiven(settings, spec);
         return;
@@ -186,7 +186,7 @@ void setSetting(RenderSettings& settings, const SettingSpec& spec, const std::st
         } else if (text == "false" || text == "0" || text == "off") {
             spec.set(settings, 0.0);
         } else {
-            fail(where, "must be true or false (got '" + text + "')");
+            fail(where, "must be true or false (got " + quote(text) + ")");
         }
         markGiven(settings, spec);
         return;

@@ -17,6 +17,47 @@ double linearFromSrgb(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c 
 
 std::uint32_t quantize(double linear) { return std::uint32_t(std::lround(std::clamp(linear, 0.0, 1.0) * 65535.0)); }
 
+std::uint32_t bigEndian(const std::string& b, std::size_t at, int bytes) {
+    std::uint32_t x = 0;
+    for (int i = 0; i < bytes; ++i) {
+        x = (x << 8) | static_cast<unsigned char>(b[at + std::size_t(i)]);
+    }
+    return x;
+}
+
+// The size a PNG or JPEG header announces, read here because stb_image gives up on images too
+// large for it with "unknown image type". False if the header does not say.
+bool announcedSize(const std::string& b, std::uint32_t& width, std::uint32_t& height) {
+    // PNG: the signature, then the IHDR chunk: width and height, 4 bytes each.
+    if (b.size() >= 24 && b.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0 && b.compare(12, 4, "IHDR") == 0) {
+        width = bigEndian(b, 16, 4);
+        height = bigEndian(b, 20, 4);
+        return true;
+    }
+    // JPEG: markers from SOI up to a start of frame (SOF0 … SOF15 but DHT, JPG and DAC), whose
+    // segment holds the precision, then height and width, 2 bytes each.
+    if (b.size() < 4 || static_cast<unsigned char>(b[0]) != 0xff || static_cast<unsigned char>(b[1]) != 0xd8) {
+        return false;
+    }
+    for (std::size_t at = 2; at + 9 <= b.size();) {
+        if (static_cast<unsigned char>(b[at]) != 0xff) {
+            return false;
+        }
+        auto marker = static_cast<unsigned char>(b[at + 1]);
+        if (marker == 0xff) {
+            at += 1;  // a fill byte before a marker
+            continue;
+        }
+        if (marker >= 0xc0 && marker <= 0xcf && marker != 0xc4 && marker != 0xc8 && marker != 0xcc) {
+            height = bigEndian(b, at + 5, 2);
+            width = bigEndian(b, at + 7, 2);
+            return true;
+        }
+        at += 2 + bigEndian(b, at + 2, 2);
+    }
+    return false;
+}
+
 }  // namespace
 
 std::uint32_t addImageTexture(Scene& scene, const std::string& bytes, std::uint32_t wrapS, std::uint32_t wrapT,
@@ -27,6 +68,16 @@ std::uint32_t addImageTexture(Scene& scene, const std::string& bytes, std::uint3
         throw InputError(where + ": image data over 1 GiB");
     }
     int size = int(bytes.size());
+    auto tooLarge = [&](std::uint64_t w, std::uint64_t h) {
+        return InputError(where + ": image of " + std::to_string(w) + "x" + std::to_string(h) + " texels; at most " +
+                          std::to_string(TEXTURE_SIZE_MAX) + " a side");
+    };
+    std::uint32_t announcedWidth = 0;
+    std::uint32_t announcedHeight = 0;
+    if (announcedSize(bytes, announcedWidth, announcedHeight) &&
+        (announcedWidth > TEXTURE_SIZE_MAX || announcedHeight > TEXTURE_SIZE_MAX)) {
+        throw tooLarge(announcedWidth, announcedHeight);
+    }
     int width = 0;
     int height = 0;
     int channels = 0;
@@ -35,8 +86,7 @@ std::uint32_t addImageTexture(Scene& scene, const std::string& bytes, std::uint3
                          (stbi_failure_reason() ? stbi_failure_reason() : "unknown format"));
     }
     if (width < 1 || height < 1 || width > int(TEXTURE_SIZE_MAX) || height > int(TEXTURE_SIZE_MAX)) {
-        throw InputError(where + ": image of " + std::to_string(width) + "x" + std::to_string(height) +
-                         " texels; at most " + std::to_string(TEXTURE_SIZE_MAX) + " a side");
+        throw tooLarge(std::uint64_t(std::max(width, 0)), std::uint64_t(std::max(height, 0)));
     }
     bool sixteen = stbi_is_16_bit_from_memory(data, size) != 0;
     std::vector<glm::uvec2> texels(std::size_t(width) * std::size_t(height));

@@ -67,8 +67,41 @@ expect 2 "opencl not in" --backend opencl
 # Bad model files: exit 2 with the file, the OBJ line or the glTF pointer, and the reason.
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n' > "$tmp/bad.obj"
 expect 2 "bad.obj: line 4: vertex index '4' out of range" "$tmp/bad.obj" "${small[@]}" -o "$tmp/x.png"
-printf '{"asset": {"version": "2.0"}, "extensionsRequired": ["KHR_draco_mesh_compression"], "extensionsUsed": ["KHR_draco_mesh_compression"]}' > "$tmp/draco.gltf"
-expect 2 "draco.gltf: /extensionsRequired/0: the required extension 'KHR_draco_mesh_compression' is not supported" "$tmp/draco.gltf" "${small[@]}" -o "$tmp/x.png"
+printf '{"asset": {"version": "2.0"}, "extensionsRequired": ["EXT_texture_webp"], "extensionsUsed": ["EXT_texture_webp"]}' > "$tmp/webp.gltf"
+expect 2 "webp.gltf: /extensionsRequired/0: the required extension 'EXT_texture_webp' is not supported" "$tmp/webp.gltf" "${small[@]}" -o "$tmp/x.png"
+
+# Nothing to render is bad input, not a black image with exit 0.
+triangle='"buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}], "bufferViews": [{"buffer": 0, "byteLength": 36}], "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"}]'
+printf '{"asset": {"version": "2.0"}, %s, "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "mode": 1}]}], "nodes": [{"mesh": 0}]}' "$triangle" > "$tmp/lines.gltf"
+expect 2 "lines.gltf: no triangles: its primitives are points or lines only" "$tmp/lines.gltf" "${small[@]}" -o "$tmp/x.png"
+printf '{"asset": {"version": "2.0"}, %s, "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}], "nodes": [{"mesh": 0}], "scenes": [{"nodes": []}], "scene": 0}' "$triangle" > "$tmp/empty.gltf"
+expect 2 "empty.gltf: no triangles: its scene has no nodes" "$tmp/empty.gltf" "${small[@]}" -o "$tmp/x.png"
+printf '{"asset": {"version": "2.0"}, %s, "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}], "nodes": [{"mesh": 0}]}' "$triangle" > "$tmp/one.gltf"
+expect 0 "" "$tmp/one.gltf" "${small[@]}" -o "$tmp/x.png"
+printf '{"asset": {"version": "1.0"}, "meshes": {"box": {"primitives": []}}}' > "$tmp/old.gltf"
+expect 2 "old.gltf: a glTF 1.0 file; Photon reads glTF 2.0" "$tmp/old.gltf" "${small[@]}" -o "$tmp/x.png"
+printf '{"camera": {"position": [0, 1, 4], "look_at": [0, 1, 0]}, "materials": {}, "lights": [{"type": "point", "position": [0, 3, 0], "power": 10}], "objects": []}' > "$tmp/nothing.json"
+expect 2 "nothing.json: /objects: the scene has no geometry" "$tmp/nothing.json" "${small[@]}" -o "$tmp/x.png"
+grep -q -- "--radius" "$tmp/err" && { echo "FAIL: a scene without geometry blames --radius"; failures=$((failures + 1)); }
+printf '\xef\xbb\xbfv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' > "$tmp/bom.obj"
+expect 0 "" "$tmp/bom.obj" "${small[@]}" -o "$tmp/x.png"
+
+# A mesh's warnings name the scene file (a scene's "name" is often empty).
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\n' > "$tmp/flat.obj"
+printf '{"camera": {"position": [0.3, 0.3, 3], "look_at": [0.3, 0.3, 0]}, "materials": {}, "lights": [{"type": "point", "position": [0, 1, 2], "power": 10}], "objects": [{"type": "mesh", "file": "flat.obj"}]}' > "$tmp/warn.json"
+expect 0 "warn.json: 1 triangles without area (or not finite) dropped" "$tmp/warn.json" "${small[@]}" -o "$tmp/x.png"
+
+# Files a model names stay in its folder tree, unless --allow-outside-paths.
+mkdir -p "$tmp/model"
+printf 'newmtl red\nKd 1 0 0\n# SECRET\n' > "$tmp/outside.mtl"
+printf 'mtllib ../outside.mtl\nusemtl red\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' > "$tmp/model/m.obj"
+expect 2 "m.obj: mtllib '" "$tmp/model/m.obj" "${small[@]}" -o "$tmp/x.png"
+grep -q "lies outside the model's folder (--allow-outside-paths reads it)" "$tmp/err" && ! grep -q SECRET "$tmp/err" ||
+  { echo "FAIL: the refusal of outside.mtl"; cat "$tmp/err"; failures=$((failures + 1)); }
+expect 0 "" "$tmp/model/m.obj" "${small[@]}" -o "$tmp/x.png" --allow-outside-paths
+printf '{"camera": {"position": [0.3, 0.3, 3], "look_at": [0.3, 0.3, 0]}, "materials": {}, "lights": [{"type": "point", "position": [0, 1, 2], "power": 10}], "objects": [{"type": "mesh", "file": "model/m.obj"}]}' > "$tmp/outer.json"
+expect 2 "outer.json: /objects/0/file: " "$tmp/outer.json" "${small[@]}" -o "$tmp/x.png"
+expect 0 "" "$tmp/outer.json" "${small[@]}" -o "$tmp/x.png" --allow-outside-paths
 printf '{"camera": {"position": [0, 1, 4], "look_at": [0, 1, 0]}, "materials": {}, "lights": [{"type": "point", "position": [0, 3, 0], "power": 10}], "objects": [{"type": "mesh", "file": "gone.obj"}]}' > "$tmp/gone.json"
 expect 2 "gone.json: /objects/0/file: " "$tmp/gone.json" "${small[@]}" -o "$tmp/x.png"
 

@@ -2,11 +2,12 @@
 # Hostile input, from the outside (issue 8): every case is a clean error (one line naming the file
 # or option, exit 2 for bad input, 1 for a runtime failure) or a correct image; never a crash, a
 # hang, a NaN image or a half-written file.
-#   tests/reliability_test.sh <photon-render> <photon-bench> <scenes dir>
+#   tests/reliability_test.sh <photon-render> <photon-bench> <scenes dir> <photon-make-mesh>
 set -uo pipefail
 render=$1
 bench=$2
 scenes=$3
+make_mesh=$4
 tmp=$(mktemp -d)
 cleanup() {
   mountpoint -q "$tmp/full" 2>/dev/null && umount "$tmp/full"
@@ -31,7 +32,7 @@ expect() {
     fail "$* exited $got, expected $code"; cat "$tmp/err"
   elif [ "$code" -ne 0 ] && [ "$lines" -ne 1 ]; then
     fail "$*: $lines lines on stderr, expected one"; cat "$tmp/err"
-  elif [ "$code" -ne 0 ] && ! grep -qE '^photon-(render|bench): ' "$tmp/err"; then
+  elif [ "$code" -ne 0 ] && ! grep -qE '^photon-(render|bench|make-mesh): ' "$tmp/err"; then
     fail "$*: the message does not name the program"; cat "$tmp/err"
   elif [ -n "$message" ] && ! grep -qF -- "$message" "$tmp/err"; then
     fail "$*: stderr lacks '$message'"; cat "$tmp/err"
@@ -169,8 +170,38 @@ done
 expect 2 "no/such" "$bench" --backends cpu --resolutions 32x24 --photons 1000 --json "$tmp/no/such/b.json"
 expect 2 "character device" "$bench" --backends cpu --resolutions 32x24 --photons 1000 --csv /dev/full
 expect 2 "--vary" "$bench" --backends cpu --resolutions 32x24 --photons 1000 --vary radius=nan
+# A resolution is WIDTHxHEIGHT and nothing more (64x48x2 was taken as 64x48).
+for size in 64x48x2 64x48x 64x 64x48junk; do
+  expect 2 "--resolutions: '$size' is not WIDTHxHEIGHT" "$bench" --backends cpu --resolutions "$size" --photons 1000 --cpu-frames 1
+done
 
-# 10. Smaller things.
+# 9. photon-make-mesh: a --material that is not a JSON object is bad input (exit 2), not a failure.
+expect 2 "--material: line 1" "$make_mesh" --triangles 100 --material '{"pbr": ' -o "$tmp/m.glb"
+expect 2 "--material: must be a JSON object" "$make_mesh" --triangles 100 --material '[1, 2]' -o "$tmp/m.glb"
+[ -e "$tmp/m.glb" ] && fail "photon-make-mesh wrote a mesh for a bad --material"
+
+# 10. Model files: no token quoted whole, no image size taken on trust.
+printf '{"camera": {"position": [0, 1, 4], "look_at": [0, 1, 0]}, "background": [%s, 0, 0], "materials": {}, "lights": [], "objects": []}' \
+  "$(head -c 100000 /dev/zero | tr '\0' 7)" >"$tmp/long.json"
+expect 2 "long.json: " "$render" "$tmp/long.json" "${small[@]}" -o "$tmp/a.png"
+[ "$(wc -c <"$tmp/err")" -lt 200 ] || fail "a 100000-digit number: a message of $(wc -c <"$tmp/err") bytes"
+{ printf 'v '; head -c 100000 /dev/zero | tr '\0' 9; printf ' 0 0\n'; } >"$tmp/long.obj"
+expect 2 "long.obj: line 1: " "$render" "$tmp/long.obj" "${small[@]}" -o "$tmp/a.png"
+[ "$(wc -c <"$tmp/err")" -lt 200 ] || fail "a 100000-digit OBJ number: a message of $(wc -c <"$tmp/err") bytes"
+# A valid PNG header announcing 100000 x 100000 texels (stb_image said "unknown image type").
+python3 - "$tmp" <<'PNG'
+import struct, sys, zlib
+def chunk(kind, data):
+    return struct.pack('>I', len(data)) + kind + data + struct.pack('>I', zlib.crc32(kind + data) & 0xffffffff)
+png = b'\x89PNG\r\n\x1a\n' + chunk(b'IHDR', struct.pack('>IIBBBBB', 100000, 100000, 8, 2, 0, 0, 0))
+png += chunk(b'IDAT', zlib.compress(b'\0' * 301)) + chunk(b'IEND', b'')
+open(sys.argv[1] + '/huge.png', 'wb').write(png)
+open(sys.argv[1] + '/huge.mtl', 'w').write('newmtl t\nmap_Kd huge.png\n')
+open(sys.argv[1] + '/huge.obj', 'w').write('mtllib huge.mtl\nusemtl t\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n')
+PNG
+expect 2 "huge.png: image of 100000x100000 texels; at most 8192 a side" "$render" "$tmp/huge.obj" "${small[@]}" -o "$tmp/a.png"
+
+# 11. Smaller things.
 expect 2 "path is empty" "$render" "" "${small[@]}" -o "$tmp/a.png"
 { cat "$scenes/cornell.json"; printf '\0'; } >"$tmp/nul.json"
 expect 2 "NUL" "$render" "$tmp/nul.json" "${small[@]}" -o "$tmp/a.png"

@@ -361,5 +361,27 @@ TEST(SceneLoaderErrors, PointersEscapeAndMessagesStayOnOneLine) {
               "x.json: /objects/0/material: unknown material 'a\\x0ab'");
 }
 
+// A scene without geometry used to load and fail later at frame setup, naming an option the user
+// never gave ("--radius 0 (automatic)").
+TEST(SceneLoaderErrors, NoGeometry) {
+    EXPECT_EQ(errorOf(sceneWith("objects", "[]")),
+              "x.json: /objects: the scene has no geometry: nothing for light to fall on or the camera to see");
+    // A sphere or quad light is geometry of its own.
+    EXPECT_EQ(errorOf(sceneWith("objects", "[]").replace(sceneWith("objects", "[]").find(R"({"type": "point")"), 0,
+                                                          R"({"type": "sphere", "center": [0, 2, 0], "radius": 0.2, "power": 5}, )")),
+              "(loaded)");
+}
+
+// A quoted token in a message is cut to 40 characters: a 100000-digit number is not a 100 KB line.
+TEST(SceneLoaderErrors, LongTokensAreCut) {
+    std::string digits(100000, '7');
+    std::string e = errorOf(sceneWith("background", "[" + digits + ", 0, 0]"));
+    EXPECT_LT(e.size(), 200u) << e.substr(0, 300);
+    EXPECT_NE(e.find("'" + std::string(40, '7') + "...'"), std::string::npos) << e.substr(0, 300);
+    e = objectError(R"({"type": ")" + std::string(5000, 'x') + R"(", "material": "white"})");
+    EXPECT_EQ(e, "x.json: /objects/0/type: unknown object type '" + std::string(40, 'x') +
+                     "...' (expected sphere|plane|quad|triangle|box|mesh)");
+}
+
 }  // namespace
 }  // namespace photon

@@ -17,6 +17,6 @@ apt-get install -y -q --no-install-recommends \
   libglm-dev nlohmann-json3-dev libcli11-dev libstb-dev libtinyexr-dev libgtest-dev \
   libvulkan-dev vulkan-tools vulkan-validationlayers glslang-tools spirv-cross \
   libglfw3-dev libimgui-dev xvfb xauth x11-apps imagemagick \
-  libtinyobjloader-dev libtinygltf-dev libbenchmark-dev \
-  clang libclang-rt-14-dev python3-matplotlib assimp-testmodels
+  libtinyobjloader-dev libtinygltf-dev libmeshoptimizer-dev libdraco-dev gltfpack assimp-testmodels libbenchmark-dev \
+  clang libclang-rt-14-dev python3-matplotlib
 apt-get install -y -q --no-install-recommends -t bookworm-backports mesa-vulkan-drivers

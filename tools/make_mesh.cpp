@@ -8,6 +8,7 @@
 
 #include "apps/program.h"
 #include "core/error.h"
+#include "core/json_node.h"
 #include "core/output_file.h"
 #include "mesh_shapes.h"
 #include "glb_writer.h"
@@ -27,6 +28,10 @@ int run(int argc, char** argv) {
     app.add_option("--output,-o", output, "The .glb file")->required();
     if (int code = parseCommandLine(app, argc, argv); code >= 0) {
         return code;
+    }
+    // Bad JSON is bad input (exit 2), found before the mesh is made.
+    if (!parseJson(material, "--material").is_object()) {
+        throw InputError("--material: must be a JSON object (a glTF material)");
     }
     checkOutputPath(output, "mesh");
     Mesh mesh = shape == "terrain" ? tools::terrain(triangles)

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <string>
 
+#include "core/model_loader.h"
 #include "core/scene.h"
 #include "core/settings.h"
 
@@ -40,6 +41,7 @@ struct ViewerOptions {
     std::uint32_t resizeWidth = 0;
     std::uint32_t resizeHeight = 0;
     std::string statsPath;           // write frame-time medians as JSON here at exit
+    PathPolicy paths;                // where the files a model names may lie (reloads too)
 };
 
 }  // namespace photon::viewer

@@ -122,7 +122,7 @@ void Viewer::loadScene(const std::string& path, bool keepCameraAndSettings) {
     sceneTime_ = std::filesystem::last_write_time(path, error);
     loadingPath_ = path;
     loadingKeeps_ = keepCameraAndSettings;
-    loading_ = std::async(std::launch::async, [path] { return loadSceneFile(path); });
+    loading_ = std::async(std::launch::async, [path, paths = options_.paths] { return loadSceneFile(path, paths); });
 }
 
 // Installs a scene whose loading has finished, if one has.

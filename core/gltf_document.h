@@ -1,0 +1,22 @@
+// What a glTF file needs before tinygltf may parse it. tinygltf 2.7 refuses two things that are
+// valid glTF: a Draco primitive's index accessor without a buffer view (the decoded faces take its
+// place), and EXT_meshopt_compression's fallback buffer, which has a length and no data. This
+// pre-pass rewrites exactly those in the JSON (the binary chunk is kept as it is), and says plainly
+// when a file is glTF 1.0, which tinygltf reports as "Invalid glTF binary" or as an empty model.
+#pragma once
+
+#include <set>
+#include <string>
+
+namespace photon {
+
+struct GltfDocument {
+    std::string bytes;                 // what tinygltf parses: the file, or it rewritten
+    bool binary = false;               // a .glb container
+    std::set<int> fallbackBuffers;     // EXT_meshopt_compression fallbacks, now one byte each
+};
+
+// Throws InputError "<path>: <reason>" for glTF 1.0; anything else tinygltf reports itself.
+GltfDocument prepareGltf(const std::string& path, const std::string& bytes);
+
+}  // namespace photon
