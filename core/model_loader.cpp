@@ -102,8 +102,7 @@ ModelExtras addModel(Scene& scene, const std::string& path, const std::string& b
     // nothing else, an automatic radius of 0): whatever the loader says about why.
     if (scene.triangles.size() == triangles) {
         std::uint64_t lost = scene.droppedTriangles - dropped;
-        throw InputError(path + (lost > 0 ? ": no triangle to render: all " + std::to_string(lost) +
-                                                " have no area or a vertex that is not finite"
+        throw InputError(path + (lost > 0 ? ": no triangles: all " + std::to_string(lost) + " have no area or are not finite"
                                           : std::string(": no triangles to render")));
     }
     return extras;

@@ -284,13 +284,13 @@ TEST(ObjLoader, ZeroAreaTrianglesAreDroppedAndCounted) {
 // to an automatic radius of 0 with a message about --radius).
 TEST(ModelLoader, NoTrianglesToRenderIsAnError) {
     EXPECT_EQ(errorOf("z.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\nf 1 1 2\n"),
-              "z.obj: no triangle to render: all 2 have no area or a vertex that is not finite");
+              "z.obj: no triangles: all 2 have no area or are not finite");
     Gltf points;
     points.parts["meshes"] = R"([{"primitives": [{"attributes": {"POSITION": 0}, "mode": 0}]}])";
-    EXPECT_EQ(errorOf("p.gltf", points.text()), "p.gltf: no triangles to render");
+    EXPECT_EQ(errorOf("p.gltf", points.text()), "p.gltf: no triangles: its primitives are points or lines only");
     Gltf noNodes;
     noNodes.parts["scenes"] = R"([{"nodes": []}])";
-    EXPECT_EQ(errorOf("n.gltf", noNodes.text()), "n.gltf: no triangles to render");
+    EXPECT_EQ(errorOf("n.gltf", noNodes.text()), "n.gltf: no triangles: its scene has no nodes");
     // A second model may add nothing of its own either: each is judged by what it added.
     Scene scene;
     load(scene, "a.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
