@@ -13,15 +13,6 @@
 namespace photon {
 namespace {
 
-const char* fileKind(mode_t mode) {
-    if (S_ISDIR(mode)) return "a directory";
-    if (S_ISFIFO(mode)) return "a FIFO (named pipe)";
-    if (S_ISCHR(mode)) return "a character device";
-    if (S_ISBLK(mode)) return "a block device";
-    if (S_ISSOCK(mode)) return "a socket";
-    return "not a regular file";
-}
-
 std::string mib(std::uint64_t bytes) { return formatNumber(double(bytes) / double(1 << 20)) + " MiB"; }
 
 // Closes the descriptor on every way out.
@@ -35,6 +26,15 @@ struct Descriptor {
 };
 
 }  // namespace
+
+const char* fileKind(unsigned mode) {
+    if (S_ISDIR(mode)) return "a directory";
+    if (S_ISFIFO(mode)) return "a FIFO (named pipe)";
+    if (S_ISCHR(mode)) return "a character device";
+    if (S_ISBLK(mode)) return "a block device";
+    if (S_ISSOCK(mode)) return "a socket";
+    return "not a regular file";
+}
 
 std::string readInputFile(const std::string& path, std::uint64_t limit, const char* what) {
     if (path.empty()) {

@@ -16,4 +16,8 @@ inline constexpr std::uint64_t kSceneFileLimit = std::uint64_t(256) << 20;
 // messages ("scene file", "OBJ file").
 std::string readInputFile(const std::string& path, std::uint64_t limit, const char* what);
 
+// What a path is that is not a regular file, from its st_mode: "a directory", "a FIFO (named
+// pipe)", ... (for messages).
+const char* fileKind(unsigned mode);
+
 }  // namespace photon

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "error.h"
+#include "input_file.h"
 
 namespace photon {
 namespace {
@@ -27,15 +28,6 @@ std::string folderOf(const std::string& path) {
 std::string nameOf(const std::string& path) {
     std::size_t slash = path.find_last_of('/');
     return slash == std::string::npos ? path : path.substr(slash + 1);
-}
-
-const char* kindOf(mode_t mode) {
-    if (S_ISDIR(mode)) return "a directory";
-    if (S_ISFIFO(mode)) return "a FIFO (named pipe)";
-    if (S_ISCHR(mode)) return "a character device";
-    if (S_ISBLK(mode)) return "a block device";
-    if (S_ISSOCK(mode)) return "a socket";
-    return "not a regular file";
 }
 
 // The file a write to `path` replaces: `path` itself, or what its chain of symbolic links ends in,
@@ -66,7 +58,7 @@ std::string checkedTarget(const std::string& path, const char* what) {
     std::string target = finalTarget(path);
     struct stat info {};
     if (::stat(target.c_str(), &info) == 0 && !S_ISREG(info.st_mode)) {
-        throw InputError(path + ": " + kindOf(info.st_mode) + ", not a file Photon can replace with the " + what);
+        throw InputError(path + ": " + fileKind(info.st_mode) + ", not a file Photon can replace with the " + what);
     }
     std::string folder = folderOf(target);
     if (::stat(folder.c_str(), &info) != 0) {
