@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cstddef>
+#include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <map>
 #include <string>
 
@@ -62,18 +64,16 @@ const Member kMembers[] = {
     PH_MEMBER(FrameParams, width), PH_MEMBER(FrameParams, seed), PH_MEMBER(FrameParams, globalPaths),
     PH_MEMBER(FrameParams, maxEyeDepth), PH_MEMBER(FrameParams, estimator), PH_MEMBER(FrameParams, globalMode),
     PH_MEMBER(FrameParams, gatherRays), PH_MEMBER(FrameParams, flags), PH_MEMBER(FrameParams, photonIdBits),
-    PH_MEMBER(FrameParams, accumulated), PH_MEMBER(FrameParams, gatherBudget), PH_MEMBER(FrameParams, firstRadiusGlobal),
-    PH_MEMBER(FrameParams, firstRadiusCaustic), PH_MEMBER(FrameParams, firstFootprintsGlobal),
-    PH_MEMBER(FrameParams, firstFootprintsCaustic), PH_MEMBER(FrameParams, alpha), PH_MEMBER(FrameParams, batchesGlobal),
-    PH_MEMBER(FrameParams, batchesCaustic), PH_MEMBER(FrameParams, pathFirst), PH_MEMBER(FrameParams, pathCount),
+    PH_MEMBER(FrameParams, accumulated), PH_MEMBER(FrameParams, gatherBudget), PH_MEMBER(FrameParams, alpha),
+    PH_MEMBER(FrameParams, sppm), PH_MEMBER(FrameParams, pathFirst), PH_MEMBER(FrameParams, pathCount),
+    PH_MEMBER(SppmMapParams, firstRadius), PH_MEMBER(SppmMapParams, firstFootprints), PH_MEMBER(SppmMapParams, batches),
     PH_MEMBER(Photon, position), PH_MEMBER(Photon, incoming), PH_MEMBER(Photon, power), PH_MEMBER(Photon, id),
     PH_MEMBER(HitPoint, position), PH_MEMBER(HitPoint, material), PH_MEMBER(HitPoint, weight),
     PH_MEMBER(HitPoint, normal), PH_MEMBER(HitPoint, direct), PH_MEMBER(HitPoint, outgoing),
     PH_MEMBER(HitPoint, albedo), PH_MEMBER(HitPoint, geometricNormal), PH_MEMBER(HitPoint, metallic),
     PH_MEMBER(HitPoint, roughness),
-    PH_MEMBER(SppmPixel, direct), PH_MEMBER(SppmPixel, countGlobal), PH_MEMBER(SppmPixel, fluxGlobal),
-    PH_MEMBER(SppmPixel, radiusGlobal), PH_MEMBER(SppmPixel, fluxCaustic), PH_MEMBER(SppmPixel, radiusCaustic),
-    PH_MEMBER(SppmPixel, countCaustic),
+    PH_MEMBER(SppmPixel, direct), PH_MEMBER(SppmPixel, maps), PH_MEMBER(SppmPixel, count),
+    PH_MEMBER(SppmFlux, flux), PH_MEMBER(SppmFlux, radius),
 };
 
 
@@ -111,6 +111,24 @@ TEST(Layout, GlslOffsetsEqualCpp) {
         std::string block = std::string(info.name) + "Buffer";
         ASSERT_TRUE(bindings.count(block)) << block;
         EXPECT_EQ(bindings[block], info.binding) << block;
+    }
+}
+
+// The check files compile every shared header with nvcc and glslang (shared/README.md), so a
+// header that only the CPU includes cannot hide C++ from the other two compilers.
+TEST(SharedCheck, IncludesEveryHeader) {
+    std::filesystem::path root = PHOTON_SOURCE_DIR;
+    for (const char* check : {"cuda/shared_check.cu", "glsl/shared_check.comp"}) {
+        std::ifstream in(root / check);
+        ASSERT_TRUE(in) << check;
+        std::stringstream text;
+        text << in.rdbuf();
+        for (const auto& entry : std::filesystem::directory_iterator(root / "shared")) {
+            if (entry.path().extension() == ".h") {
+                std::string include = "#include \"../shared/" + entry.path().filename().string() + "\"";
+                EXPECT_NE(text.str().find(include), std::string::npos) << check << " does not include " << entry.path();
+            }
+        }
     }
 }
 
