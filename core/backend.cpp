@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <stdexcept>
 
 #include "error.h"
@@ -126,17 +125,15 @@ void Backend::measureRadii() {
     footprints_ = measureFootprints(scene_, camera_, settings_);
     FrameRadii radii = firstFrameRadii(scene_, settings_, footprints_, planPhotons(scene_, settings_));
     validateForScene(settings_, scene_, radii);
-    firstRadii_ = radii;
+    policy_.start(radii);
     footprintsDirty_ = false;
 }
 
 const FrameParams& Backend::beginFrame() {
     prepare();
     measureRadii();
-    if (accumulated_ == 0 || settings_.estimator != Estimator::Sppm) {
-        radii_ = firstRadii_;
-    }
-    params_ = makeFrameParams(scene_, camera_, settings_, budget_, frameIndex_, accumulated_, radii_, split_);
+    params_ = makeFrameParams(scene_, camera_, settings_, budget_, frameIndex_, accumulated_,
+                              policy_.frame(settings_, accumulated_), split_);
     return params_;
 }
 
@@ -144,7 +141,7 @@ bool Backend::endFrame(const FrameResult& result, bool mayRepeat) {
     stats_ = FrameStats{};
     stats_.ms = result.ms;
     for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
-        stats_.stored[m] = result.counters[COUNTER_STORED_GLOBAL + m];
+        stats_.stored[m] = result.counters[COUNTER_STORED + m];
         stats_.capacity[m] = params_.grids[m].photonCapacity;
     }
     stats_.emitted[MAP_GLOBAL] = params_.globalPaths;
@@ -157,18 +154,7 @@ bool Backend::endFrame(const FrameResult& result, bool mayRepeat) {
         std::fprintf(stderr, "photon: a photon map overflowed; photons were dropped and it was grown\n");
         warnedDropped_ = true;
     }
-    if (settings_.estimator == Estimator::Sppm) {
-        // The next frame's cells follow the median radius of the pixels that have photons, and
-        // the largest (footprints.h: sppmCellRadius).
-        for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
-            float largest;
-            std::memcpy(&largest, &result.counters[COUNTER_SPPM_RADIUS_GLOBAL + m], sizeof largest);
-            float r = sppmCellRadius(result.counters + COUNTER_SPPM_HISTOGRAM + m * SPPM_RADIUS_BINS, largest);
-            if (r > 0.0f) {
-                radii_.radius[m] = r;
-            }
-        }
-    }
+    policy_.observe(settings_, result.counters);
     frameIndex_ += 1;
     accumulated_ += 1;
     return true;
@@ -183,7 +169,7 @@ bool Backend::growPhotonMaps() {
             continue;
         }
         dropped = dropped || stored > capacity;
-        grownCapacity_[m] = static_cast<std::uint32_t>(std::min(4.0e9, std::ceil(double(stored) * 1.5)));
+        grownCapacity_[m] = static_cast<std::uint32_t>(std::min(double(kMapCapacityMax), std::ceil(double(stored) * 1.5)));
         allocationDirty_ = true;
     }
     return dropped;

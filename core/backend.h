@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "buffers.h"
+#include "estimator_policy.h"
 #include "footprints.h"
 #include "frame_setup.h"
 #include "image.h"
@@ -145,8 +146,7 @@ private:
     CameraDesc camera_;
     PhotonBudget budget_;
     Footprints footprints_;       // of the camera and image (automatic radii)
-    FrameRadii firstRadii_;       // the first frame's radii
-    FrameRadii radii_;            // this frame's (sppm: from the statistics of the frame before)
+    EstimatorPolicy policy_;      // the radii frame by frame
     PathSplit split_;
     bool footprintsDirty_ = true;
     FrameParams params_{};

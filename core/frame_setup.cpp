@@ -3,8 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "footprints.h"
-#include "shared/progressive.h"
+#include "estimator_policy.h"
 
 namespace photon {
 namespace {
@@ -39,10 +38,9 @@ PhotonBudget planPhotons(const Scene& scene, const RenderSettings& settings) {
     b.sppm = settings.estimator == Estimator::Sppm;
     // A global path stores at most one photon per bounce; Russian roulette makes the mean small.
     // A caustic path stores at most one photon: at its first non-specular surface.
-    // Capacities stay below 2^31 photons so that offsets fit in 32 bits; a request that large
-    // fails the backends' memory check anyway.
     double perPath = std::min<double>(settings.photonCapacity, settings.maxPhotonDepth);
-    b.capacity[MAP_GLOBAL] = static_cast<std::uint32_t>(std::min(std::ceil(double(b.globalPaths) * perPath), 2147483647.0));
+    b.capacity[MAP_GLOBAL] =
+        static_cast<std::uint32_t>(std::min(std::ceil(double(b.globalPaths) * perPath), double(kMapCapacityMax)));
     if (b.splitCaustics) {
         b.capacity[MAP_CAUSTIC] = b.causticPaths;
     } else {
@@ -77,13 +75,11 @@ FrameParams makeFrameParams(const Scene& scene, const CameraDesc& camera, const 
     info.linearCount = linear ? static_cast<std::uint32_t>(scene.primitiveRefs.size()) : 0u;
     info.background = scene.background;
 
-    bool progressive = settings.estimator == Estimator::Progressive;
     glm::vec3 extent = scene.boundsMax - scene.boundsMin;
     float cube = std::max({extent.x, extent.y, extent.z});
     for (std::uint32_t map = 0; map < MAP_COUNT; ++map) {
         GridParams& g = p.grids[map];
-        float r = radii.radius[map];
-        g.radius = progressive ? progressiveRadius(r, settings.alpha, accumulated) : r;
+        g.radius = radii.radius[map];
         g.kind = settings.grid == GridKind::Bounded ? GRID_BOUNDED : GRID_HASHED;
         // Hashed cells start at the camera, where the image needs precision (a far object that
         // stretches the bounds changes nothing).
@@ -122,16 +118,10 @@ FrameParams makeFrameParams(const Scene& scene, const CameraDesc& camera, const 
     p.photonIdBits = bitsBelow(budget.totalPaths()) + PHOTON_BOUNCE_BITS;
     p.accumulated = accumulated;
     p.gatherBudget = settings.gatherBudget;
-    p.firstRadiusGlobal = radii.firstRadius[MAP_GLOBAL];
-    p.firstRadiusCaustic = radii.firstRadius[MAP_CAUSTIC];
-    p.firstFootprintsGlobal = radii.firstFootprints[MAP_GLOBAL];
-    p.firstFootprintsCaustic = radii.firstFootprints[MAP_CAUSTIC];
+    for (std::uint32_t map = 0; map < MAP_COUNT; ++map) {
+        p.sppm[map] = radii.sppm[map];
+    }
     p.alpha = settings.alpha;
-    auto batches = [](std::uint32_t paths) {
-        return std::clamp<std::uint32_t>((paths + SPPM_BATCH_PATHS / 2) / SPPM_BATCH_PATHS, 1u, SPPM_BATCHES_MAX);
-    };
-    p.batchesGlobal = batches(budget.globalPaths);
-    p.batchesCaustic = batches(budget.splitCaustics ? budget.causticPaths : budget.globalPaths);
     std::uint64_t total = budget.totalPaths();
     std::uint64_t first = total * split.rank / split.ranks;
     p.pathFirst = static_cast<std::uint32_t>(first);

@@ -260,19 +260,18 @@ void validateForScene(const RenderSettings& settings, const Scene& scene, const 
     glm::vec3 extent = scene.boundsMax - scene.boundsMin;
     double size = std::max({double(extent.x), double(extent.y), double(extent.z)});
     for (std::uint32_t map = 0; map < MAP_COUNT; ++map) {
-        const char* flagName = map == MAP_GLOBAL ? "--radius" : "--caustic-radius";
-        float given = map == MAP_GLOBAL ? settings.radius : settings.causticRadius;
         double r = radii.radius[map];
-        std::string what = std::string(flagName) + " " + formatNumber(r) + (given > 0.0f ? "" : " (automatic)");
+        std::string what = std::string(mapRadiusFlag(map)) + " " + formatNumber(r) + (mapRadius(settings, map) > 0.0f ? "" : " (automatic)");
         if (!kRadius.contains(r)) {
             fail(what, "must be " + kRadius.describe() + "; the scene spans " + formatNumber(size));
         }
         if (settings.grid == GridKind::Bounded) {
-            // A query visits the cells its box overlaps: at most 16 along an axis.
+            // A bounded grid's query reaches kBoundedGridReachCells cells from its centre.
             double cell = size / double(settings.gridResolution);
             if (r > kBoundedGridReachCells * cell * (1.0 + 1e-6)) {
-                fail(what, "too large for the bounded grid, whose cells are " + formatNumber(cell) +
-                               " wide: at most 6 cells (lower --grid-resolution for wider cells, or use --grid hashed)");
+                fail(what, "too large for the bounded grid, whose cells are " + formatNumber(cell) + " wide: at most " +
+                               formatNumber(kBoundedGridReachCells) +
+                               " cells (lower --grid-resolution for wider cells, or use --grid hashed)");
             }
         }
     }

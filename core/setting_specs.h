@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "footprints.h"
+#include "estimator_policy.h"
 #include "scene.h"
 #include "settings.h"
 

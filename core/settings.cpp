@@ -71,6 +71,23 @@ std::string list(const Names<E, N>& names) {
 
 }  // namespace
 
+float mapRadius(const RenderSettings& settings, std::uint32_t map) {
+    static_assert(MAP_COUNT == 2, "a new photon map needs its radius setting here");
+    switch (map) {
+        case MAP_GLOBAL: return settings.radius;
+        case MAP_CAUSTIC: return settings.causticRadius;
+    }
+    throw std::logic_error("mapRadius: no photon map " + std::to_string(map));
+}
+
+const char* mapRadiusFlag(std::uint32_t map) {
+    switch (map) {
+        case MAP_GLOBAL: return "--radius";
+        case MAP_CAUSTIC: return "--caustic-radius";
+    }
+    throw std::logic_error("mapRadiusFlag: no photon map " + std::to_string(map));
+}
+
 const char* toString(Estimator e) { return nameOf(kEstimators, e); }
 const char* toString(Kernel k) { return nameOf(kKernels, k); }
 const char* toString(GridKind g) { return nameOf(kGrids, g); }

@@ -47,8 +47,8 @@ struct RenderSettings {
     float causticFraction = 0.5f;         // share of the photons aimed at specular objects (if any)
     Estimator estimator = Estimator::Radius;
     Kernel kernel = Kernel::Epanechnikov;
-    float radius = 0.0f;                  // global map query radius; 0: 1% of the scene's diagonal
-    float causticRadius = 0.0f;           // caustic map query radius; 0: half the global radius
+    float radius = 0.0f;                  // global map query radius; 0: automatic (estimator_policy.h)
+    float causticRadius = 0.0f;           // caustic map query radius; 0: automatic
     std::uint32_t k = 50;                 // photons of the k-nearest estimator
     float alpha = 2.0f / 3.0f;            // progressive radius reduction (Knaus & Zwicker)
     GlobalMode globalMode = GlobalMode::Direct;
@@ -70,6 +70,10 @@ struct RenderSettings {
     Tonemap tonemap = Tonemap::Aces;
     std::uint64_t given = 0;              // bit i: settingSpecs()[i] was set by a file or a flag
 };
+
+// A photon map's query radius as set (0: automatic), and the flag that sets it.
+float mapRadius(const RenderSettings& settings, std::uint32_t map);
+const char* mapRadiusFlag(std::uint32_t map);
 
 const char* toString(Estimator e);
 const char* toString(Kernel k);

@@ -82,7 +82,7 @@ protected:
     void adjustPlan(BufferPlan& plan, const PhotonBudget& budget) override {
         plan.scratchBytes = 64u << 20;
         if (settings().deterministic) {
-            plan.scratchBytes += PhotonSort::bytesFor(std::max(budget.capacity[MAP_GLOBAL], budget.capacity[MAP_CAUSTIC]));
+            plan.scratchBytes += PhotonSort::bytesFor(budget.largestCapacity());
         }
     }
 
@@ -118,7 +118,7 @@ protected:
             buffer.resize(plan.bytes(binding), bufferInfo(binding).name);
             CUDA_CHECK(cudaMemset(buffer.data(), 0, buffer.bytes()), bufferInfo(binding).name);
         }
-        scan_.reserve(std::max(budget.cells[MAP_GLOBAL], budget.cells[MAP_CAUSTIC]) + 1);
+        scan_.reserve(budget.largestCells() + 1);
         width_ = width;
         height_ = height;
         hostPixels_.resize(std::size_t(width) * height, "allocate image");
@@ -146,7 +146,7 @@ protected:
             kernels.countCells(b, m, config_, stream_);
             scan_.exclusiveSum(b.cellCounts + g.cellOffset, b.cellStart + g.cellOffset, g.cellCount + 1, stream_);
             if (deterministic) {
-                std::uint32_t stored = std::min(counters_[COUNTER_STORED_GLOBAL + m], g.photonCapacity);
+                std::uint32_t stored = std::min(counters_[COUNTER_STORED + m], g.photonCapacity);
                 sort_.reserve(std::max(stored, 1u));
                 kernels.sortKeys(b, m, stored, sort_.keys(), sort_.indices(), config_, stream_);
                 const std::uint32_t* order = sort_.sort(stored, int(g.keyBits + params.photonIdBits), stream_);

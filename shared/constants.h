@@ -98,19 +98,22 @@ PH_CONST uint TONEMAP_REINHARD = 1u;
 PH_CONST uint TONEMAP_ACES = 2u;  // Narkowicz's fit of the ACES filmic curve
 PH_CONST uint TONEMAP_COUNT = 3u;
 
-// Photon maps.
+// Photon maps. Every per-map quantity (grids, capacities, counters, radii, sppm state) is an
+// array indexed by these, so that a further map is one constant here plus the photon pass that
+// fills it.
 PH_CONST uint MAP_GLOBAL = 0u;
 PH_CONST uint MAP_CAUSTIC = 1u;
 PH_CONST uint MAP_COUNT = 2u;
 
-// Slots of the counters buffer.
-PH_CONST uint COUNTER_STORED_GLOBAL = 0u;   // photons appended to the global map this frame
-PH_CONST uint COUNTER_STORED_CAUSTIC = 1u;  // photons appended to the caustic map this frame
-PH_CONST uint COUNTER_SPPM_RADIUS_GLOBAL = 2u;   // sppm: the largest radius of a pixel with photons (float bits)
-PH_CONST uint COUNTER_SPPM_RADIUS_CAUSTIC = 3u;
-PH_CONST uint SPPM_RADIUS_BINS = 64u;            // sppm: pixels with photons by the binary exponent of their radius
-PH_CONST uint COUNTER_SPPM_HISTOGRAM = 4u;       // the global map's bins, then the caustic map's
-PH_CONST uint COUNTER_COUNT = COUNTER_SPPM_HISTOGRAM + 2u * SPPM_RADIUS_BINS;
+// Slots of the counters buffer, each a run of MAP_COUNT (the histograms: of MAP_COUNT × bins).
+PH_CONST uint COUNTER_STORED = 0u;                   // photons appended to each map this frame
+PH_CONST uint COUNTER_SPPM_RADIUS = MAP_COUNT;       // sppm: the largest radius of a pixel with photons (float bits)
+PH_CONST uint SPPM_RADIUS_BINS = 64u;                // sppm: pixels with photons by the binary exponent of their radius
+PH_CONST uint COUNTER_SPPM_HISTOGRAM = 2u * MAP_COUNT;  // each map's bins, in map order
+PH_CONST uint COUNTER_COUNT = COUNTER_SPPM_HISTOGRAM + MAP_COUNT * SPPM_RADIUS_BINS;
+
+// sppm: photon counts per pixel, a slot per map (a multiple of 4: SppmPixel stays 16-byte sized).
+PH_CONST uint SPPM_COUNT_SLOTS = 4u;
 
 // sppm: a frame's photons of a map count as one photon pass per this many emitted paths (at most
 // SPPM_BATCHES_MAX passes), so that radii shrink with the photons traced, not with the frames.

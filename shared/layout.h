@@ -140,24 +140,28 @@ struct PH_ALIGN16 GridParams {
     // keyBits: bits of a cell key (cellCount ≤ 2^keyBits), for the deterministic sort
 };
 
+// sppm's start and pass counting for one map (sppm.h).
+struct PH_ALIGN16 SppmMapParams {
+    float firstRadius; float firstFootprints; uint batches; uint pad0;
+    // firstRadius: every pixel's first radius (0: firstFootprints of its footprint); batches: the
+    // photon passes this frame's photons of the map count as
+};
+
 struct PH_ALIGN16 FrameParams {
     Camera camera;
     SceneInfo scene;
-    GridParams grids[2];                // MAP_GLOBAL, MAP_CAUSTIC
+    GridParams grids[MAP_COUNT];
+    SppmMapParams sppm[MAP_COUNT];
     uint width; uint height; uint frameIndex; uint seed;
     uint globalPaths; uint causticPaths; uint maxPhotonDepth; uint maxEyeDepth;
     // globalPaths/causticPaths: photons emitted this frame by the global and the caustic pass
     uint estimator; uint kernel; uint knnK; uint globalMode;
     uint gatherRays; uint lightSamples; uint view; uint flags;
-    uint photonIdBits; uint accumulated; uint gatherBudget; uint pad0;
+    uint photonIdBits; uint accumulated; uint gatherBudget; float alpha;
     // photonIdBits: bits of a photon id this frame (photon_map.h); accumulated: frames already
     // averaged into the accumulation buffer (the progressive index i); gatherBudget: photons a
-    // query visits per cell before it subsamples the cell (0: all)
-    float firstRadiusGlobal; float firstRadiusCaustic; float firstFootprintsGlobal; float firstFootprintsCaustic;
-    float alpha; uint batchesGlobal; uint batchesCaustic; uint pad1;
-    // sppm: a pixel's first radius of each map (0: firstFootprints* of its footprint, sppm.h); α;
-    // the photon passes each map's photons of this frame count as (sppm.h)
-    uint pathFirst; uint pathCount; uint pad2; uint pad3;
+    // query visits per cell before it subsamples the cell (0: all); alpha: sppm's α
+    uint pathFirst; uint pathCount; uint pad0; uint pad1;
     // the paths this renderer traces, [pathFirst, pathFirst + pathCount) of the frame's
     // globalPaths + causticPaths: all of them, or one rank's share when several GPUs split a frame
 };
@@ -181,12 +185,15 @@ struct PH_ALIGN16 HitPoint {
 };
 
 // A pixel's statistics under stochastic progressive photon mapping (sppm.h), kept across frames:
-// for each map the photon count N, the radius R and the flux τ; and the mean of the direct part.
+// for each map the flux τ, the radius R and the photon count N; and the mean of the direct part.
+struct PH_ALIGN16 SppmFlux {
+    vec3 flux; float radius;
+};
+
 struct PH_ALIGN16 SppmPixel {
-    vec3 direct; float countGlobal;     // mean over frames of emission, background and direct light
-    vec3 fluxGlobal; float radiusGlobal;
-    vec3 fluxCaustic; float radiusCaustic;
-    float countCaustic; uint pad0; uint pad1; uint pad2;
+    vec3 direct; float pad0;            // mean over frames of emission, background and direct light
+    SppmFlux maps[MAP_COUNT];
+    float count[SPPM_COUNT_SLOTS];      // N of each map (the slots beyond MAP_COUNT unused)
 };
 
 PH_NAMESPACE_END
@@ -225,15 +232,17 @@ PH_OFFSET(SceneInfo, background, 32);
 PH_SIZE(GridParams, 48); PH_OFFSET(GridParams, cellSize, 12); PH_OFFSET(GridParams, resolution, 16);
 PH_OFFSET(GridParams, cellOffset, 28); PH_OFFSET(GridParams, photonOffset, 32);
 PH_OFFSET(GridParams, radius, 40); PH_OFFSET(GridParams, keyBits, 44);
-PH_SIZE(FrameParams, 64 + 48 + 2 * 48 + 8 * 16); PH_OFFSET(FrameParams, scene, 64);
-PH_OFFSET(FrameParams, grids, 112); PH_OFFSET(FrameParams, width, 208);
-PH_OFFSET(FrameParams, globalPaths, 224); PH_OFFSET(FrameParams, estimator, 240);
-PH_OFFSET(FrameParams, gatherRays, 256); PH_OFFSET(FrameParams, photonIdBits, 272);
-PH_OFFSET(FrameParams, gatherBudget, 280);
-PH_OFFSET(FrameParams, firstRadiusGlobal, 288); PH_OFFSET(FrameParams, firstFootprintsCaustic, 300);
-PH_OFFSET(FrameParams, alpha, 304); PH_OFFSET(FrameParams, pathFirst, 320);
-PH_SIZE(SppmPixel, 64); PH_OFFSET(SppmPixel, countGlobal, 12); PH_OFFSET(SppmPixel, radiusGlobal, 28);
-PH_OFFSET(SppmPixel, fluxCaustic, 32); PH_OFFSET(SppmPixel, countCaustic, 48);
+PH_SIZE(SppmMapParams, 16); PH_OFFSET(SppmMapParams, batches, 8);
+PH_SIZE(FrameParams, 64 + 48 + MAP_COUNT * (48 + 16) + 6 * 16); PH_OFFSET(FrameParams, scene, 64);
+PH_OFFSET(FrameParams, grids, 112); PH_OFFSET(FrameParams, sppm, 112 + MAP_COUNT * 48);
+PH_OFFSET(FrameParams, width, 112 + MAP_COUNT * 64);
+PH_OFFSET(FrameParams, globalPaths, 128 + MAP_COUNT * 64); PH_OFFSET(FrameParams, estimator, 144 + MAP_COUNT * 64);
+PH_OFFSET(FrameParams, gatherRays, 160 + MAP_COUNT * 64); PH_OFFSET(FrameParams, photonIdBits, 176 + MAP_COUNT * 64);
+PH_OFFSET(FrameParams, alpha, 188 + MAP_COUNT * 64); PH_OFFSET(FrameParams, pathFirst, 192 + MAP_COUNT * 64);
+PH_SIZE(SppmFlux, 16); PH_OFFSET(SppmFlux, radius, 12);
+PH_SIZE(SppmPixel, 16 + MAP_COUNT * 16 + 4 * SPPM_COUNT_SLOTS); PH_OFFSET(SppmPixel, maps, 16);
+PH_OFFSET(SppmPixel, count, 16 + MAP_COUNT * 16);
+static_assert(MAP_COUNT <= SPPM_COUNT_SLOTS, "SppmPixel::count holds a slot per map");
 PH_SIZE(Photon, 32); PH_OFFSET(Photon, incoming, 12); PH_OFFSET(Photon, power, 16); PH_OFFSET(Photon, id, 28);
 PH_SIZE(HitPoint, 80); PH_OFFSET(HitPoint, metallic, 64); PH_OFFSET(HitPoint, roughness, 68); PH_OFFSET(HitPoint, material, 12); PH_OFFSET(HitPoint, weight, 16);
 PH_OFFSET(HitPoint, normal, 28); PH_OFFSET(HitPoint, direct, 32); PH_OFFSET(HitPoint, outgoing, 44);

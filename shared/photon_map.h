@@ -20,7 +20,7 @@ PH_NAMESPACE_BEGIN
 
 // Photons map `map` holds this frame: those tracePhotons counted, up to the map's capacity.
 PH_FN uint storedPhotons(BUF_PARAM uint map) {
-    return min(BUF(counters)[COUNTER_STORED_GLOBAL + map], BUF(params).grids[map].photonCapacity);
+    return min(BUF(counters)[COUNTER_STORED + map], BUF(params).grids[map].photonCapacity);
 }
 
 #ifndef PH_PHOTON_MAPS_READONLY  // shaders that only read the maps declare them read-only

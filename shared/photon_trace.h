@@ -131,7 +131,7 @@ PH_FN uint photonBounce(BUF_PARAM PH_INOUT(PhotonPath) path, PH_OUT(Photon) phot
 // The next slot of map `map`; slots beyond its capacity are counted but not written, so that the
 // host learns how much room the frame needed.
 PH_FN void appendPhoton(BUF_PARAM uint map, PH_IN(Photon) photon) {
-    uint slot = PH_RESERVE_SLOT(BUF(counters)[COUNTER_STORED_GLOBAL + map]);
+    uint slot = PH_RESERVE_SLOT(BUF(counters)[COUNTER_STORED + map]);
     if (slot < BUF(params).grids[map].photonCapacity) {
         BUF(photons)[BUF(params).grids[map].photonOffset + slot] = photon;
     }

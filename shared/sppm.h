@@ -5,7 +5,7 @@
 // photons within R this frame, with reflected flux Φ = Σ β f Φp, update them as
 //     N' = N + αM,    R' = R √(N' / (N + M)),    τ' = (τ + Φ) R'² / R²,
 // so radii shrink where photons are found and not where there are none. A frame of a million
-// photons counts as B photon passes of SPPM_BATCH_PATHS each (FrameParams.batches*), as
+// photons counts as B photon passes of SPPM_BATCH_PATHS each (FrameParams.sppm[map].batches), as
 // Hachisuka's smallppm traces its photons in passes of a thousand: the update runs B times, each
 // with a B-th of the frame's photons and of their flux, thinned to the shrinking disc under the
 // estimate's own assumption of a density that is even across the disc. Radii then shrink with the
@@ -15,7 +15,7 @@
 // eye pass.
 //
 // The first radius of a pixel is a number of pixel footprints at its visible point (the host picks
-// it from the photon density, FrameParams.firstFootprints*), so it knows the image, not the
+// it from the photon density, FrameParams.sppm[map].firstFootprints), so it knows the image, not the
 // scene's bounds. Radii then differ from pixel to pixel by orders of magnitude: the grid's cells
 // follow the median radius of the pixels with photons (each frame's GridParams.radius, from the
 // histogram COUNTER_SPPM_HISTOGRAM of the frame before), a wider query visits more cells,
@@ -37,15 +37,14 @@ PH_FN float pixelFootprint(PH_IN(Camera) camera, uint height, vec3 p) {
 PH_FN SppmPixel emptySppmPixel() {
     SppmPixel s;
     s.direct = vec3(0.0f);
-    s.countGlobal = 0.0f;
-    s.fluxGlobal = vec3(0.0f);
-    s.radiusGlobal = 0.0f;
-    s.fluxCaustic = vec3(0.0f);
-    s.radiusCaustic = 0.0f;
-    s.countCaustic = 0.0f;
-    s.pad0 = 0u;
-    s.pad1 = 0u;
-    s.pad2 = 0u;
+    s.pad0 = 0.0f;
+    for (uint m = 0u; m < MAP_COUNT; ++m) {
+        s.maps[m].flux = vec3(0.0f);
+        s.maps[m].radius = 0.0f;
+    }
+    for (uint m = 0u; m < SPPM_COUNT_SLOTS; ++m) {
+        s.count[m] = 0.0f;
+    }
     return s;
 }
 
@@ -65,9 +64,8 @@ PH_FN vec3 sppmUpdate(BUF_PARAM uint map, PH_IN(Shading) s, vec3 weight, float f
         return vec3(0.0f);
     }
     if (e.radius == 0.0f) {
-        bool global = map == MAP_GLOBAL;
-        float first = global ? BUF(params).firstRadiusGlobal : BUF(params).firstRadiusCaustic;
-        e.radius = first > 0.0f ? first : footprint * (global ? BUF(params).firstFootprintsGlobal : BUF(params).firstFootprintsCaustic);
+        float first = BUF(params).sppm[map].firstRadius;
+        e.radius = first > 0.0f ? first : footprint * BUF(params).sppm[map].firstFootprints;
     }
     if (e.count == 0.0f) {
         // A pixel that has found no photon yet (its τ is 0) is held to the radius the cells follow:
@@ -81,7 +79,7 @@ PH_FN vec3 sppmUpdate(BUF_PARAM uint map, PH_IN(Shading) s, vec3 weight, float f
     float m = q.w;
     vec3 frame = phi * (INV_PI / (r * r));
     if (m > 0.0f) {
-        uint batches = max(map == MAP_GLOBAL ? BUF(params).batchesGlobal : BUF(params).batchesCaustic, 1u);
+        uint batches = max(BUF(params).sppm[map].batches, 1u);
         float alpha = BUF(params).alpha;
         float batchPhotons = m / float(batches);
         vec3 batchFlux = phi / float(batches);
@@ -102,7 +100,7 @@ PH_FN vec3 sppmUpdate(BUF_PARAM uint map, PH_IN(Shading) s, vec3 weight, float f
     }
     if (e.count > 0.0f) {
         uint bits = floatBitsToUint(e.radius);
-        PH_ATOMIC_MAX(BUF(counters)[COUNTER_SPPM_RADIUS_GLOBAL + map], bits);
+        PH_ATOMIC_MAX(BUF(counters)[COUNTER_SPPM_RADIUS + map], bits);
         int bin = clamp(int(bits >> 23u) - 127 + int(SPPM_RADIUS_BINS / 2u), 0, int(SPPM_RADIUS_BINS) - 1);
         PH_ATOMIC_ADD(BUF(counters)[COUNTER_SPPM_HISTOGRAM + map * SPPM_RADIUS_BINS + uint(bin)], 1u);
     }
@@ -126,23 +124,19 @@ PH_FN vec3 gatherSppm(BUF_PARAM uint pixel) {
         Rng rng = rngCreate(pixel, BUF(params).frameIndex, BUF(params).seed, STREAM_GATHER);
         float u = rngNext(rng);
         float footprint = pixelFootprint(BUF(params).camera, BUF(params).height, hp.position);
-        SppmEstimate global;
-        global.flux = state.fluxGlobal;
-        global.radius = state.radiusGlobal;
-        global.count = state.countGlobal;
-        vec3 g = sppmUpdate(BUF_ARG MAP_GLOBAL, s, hp.weight, footprint, u, global);
-        state.fluxGlobal = global.flux;
-        state.radiusGlobal = global.radius;
-        state.countGlobal = global.count;
-        SppmEstimate caustic;
-        caustic.flux = state.fluxCaustic;
-        caustic.radius = state.radiusCaustic;
-        caustic.count = state.countCaustic;
-        vec3 c = sppmUpdate(BUF_ARG MAP_CAUSTIC, s, hp.weight, footprint, u, caustic);
-        state.fluxCaustic = caustic.flux;
-        state.radiusCaustic = caustic.radius;
-        state.countCaustic = caustic.count;
-        frame += (viewShowsMap(view, MAP_GLOBAL) ? g : vec3(0.0f)) + (viewShowsMap(view, MAP_CAUSTIC) ? c : vec3(0.0f));
+        vec3 shown = vec3(0.0f);
+        for (uint m = 0u; m < MAP_COUNT; ++m) {
+            SppmEstimate e;
+            e.flux = state.maps[m].flux;
+            e.radius = state.maps[m].radius;
+            e.count = state.count[m];
+            vec3 estimate = sppmUpdate(BUF_ARG m, s, hp.weight, footprint, u, e);
+            state.maps[m].flux = e.flux;
+            state.maps[m].radius = e.radius;
+            state.count[m] = e.count;
+            shown += viewShowsMap(view, m) ? estimate : vec3(0.0f);
+        }
+        frame += shown;
     }
     BUF(sppmPixels)[pixel] = state;
     return frame;
@@ -152,11 +146,11 @@ PH_FN vec3 gatherSppm(BUF_PARAM uint pixel) {
 PH_FN vec3 sppmRadiance(PH_IN(SppmPixel) state, uint frames, uint view) {
     vec3 radiance = viewShowsDirect(view) ? state.direct : vec3(0.0f);
     float k = float(frames);
-    if (viewShowsMap(view, MAP_GLOBAL) && state.radiusGlobal > 0.0f) {
-        radiance += state.fluxGlobal * (INV_PI / (k * state.radiusGlobal * state.radiusGlobal));
-    }
-    if (viewShowsMap(view, MAP_CAUSTIC) && state.radiusCaustic > 0.0f) {
-        radiance += state.fluxCaustic * (INV_PI / (k * state.radiusCaustic * state.radiusCaustic));
+    for (uint m = 0u; m < MAP_COUNT; ++m) {
+        float r = state.maps[m].radius;
+        if (viewShowsMap(view, m) && r > 0.0f) {
+            radiance += state.maps[m].flux * (INV_PI / (k * r * r));
+        }
     }
     return radiance;
 }

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "core/footprints.h"
+#include "core/estimator_policy.h"
 #include "core/frame_setup.h"
 #include "core/image.h"
 #include "core/scene.h"
