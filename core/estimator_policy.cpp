@@ -11,6 +11,21 @@
 namespace photon {
 namespace {
 
+// Each photon map's rules, a value per map.
+
+// Automatic radii in footprints (of the median footprint) for the single-frame estimators.
+constexpr float kAutoRadiusFootprints[MAP_COUNT] = {8.0f, 4.0f};
+// Where no footprint could be measured: the global map's radius is 1% of the scene's diagonal, and
+// every other map's its share of it.
+constexpr float kFallbackShare[MAP_COUNT] = {1.0f, 0.5f};
+
+// sppm starts each pixel at its own footprint times a number of footprints chosen so that a
+// first disc holds about this many photons if they spread over the image (clamped to the range
+// below): few enough to keep detail, enough that the first frames are not all noise.
+constexpr float kSppmFirstPhotons[MAP_COUNT] = {64.0f, 16.0f};
+constexpr float kSppmFirstFootprintsMin[MAP_COUNT] = {1.5f, 1.0f};
+constexpr float kSppmFirstFootprintsMax[MAP_COUNT] = {16.0f, 8.0f};
+
 // sppm: a frame's paths of a map count as one photon pass per SPPM_BATCH_PATHS (sppm.h).
 std::uint32_t sppmPasses(std::uint32_t paths) {
     return std::clamp<std::uint32_t>((paths + SPPM_BATCH_PATHS / 2) / SPPM_BATCH_PATHS, 1u, SPPM_BATCHES_MAX);

@@ -14,21 +14,8 @@
 
 namespace photon {
 
-// Automatic radii in footprints (of the median footprint) for the single-frame estimators.
-inline constexpr float kAutoRadiusFootprints[MAP_COUNT] = {8.0f, 4.0f};
-// Where no footprint could be measured: the global map's radius is 1% of the scene's diagonal, and
-// every other map's its share of it.
-inline constexpr float kFallbackShare[MAP_COUNT] = {1.0f, 0.5f};
-
 // A bounded grid's query reaches this many cells from its centre (validateForScene).
 inline constexpr float kBoundedGridReachCells = 6.0f;
-
-// sppm starts each pixel at its own footprint times a number of footprints chosen so that a
-// first disc holds about this many photons if they spread over the image (clamped to the range
-// below): few enough to keep detail, enough that the first frames are not all noise.
-inline constexpr float kSppmFirstPhotons[MAP_COUNT] = {64.0f, 16.0f};
-inline constexpr float kSppmFirstFootprintsMin[MAP_COUNT] = {1.5f, 1.0f};
-inline constexpr float kSppmFirstFootprintsMax[MAP_COUNT] = {16.0f, 8.0f};
 
 // A frame's radii: the query radius of each map (GridParams.radius; sppm: the radius the grid's
 // cells follow) and sppm's per-map parameters (FrameParams.sppm).
