@@ -14,24 +14,7 @@ import struct
 import sys
 from pathlib import Path
 
-
-def sphere(stacks, slices):
-    """A unit sphere: positions (= normals) and counter-clockwise triangles."""
-    positions, triangles = [], []
-    for i in range(stacks + 1):
-        theta = math.pi * i / stacks
-        for j in range(slices + 1):
-            phi = 2 * math.pi * j / slices
-            positions.append((math.sin(theta) * math.cos(phi), math.cos(theta), -math.sin(theta) * math.sin(phi)))
-    for i in range(stacks):
-        for j in range(slices):
-            a = i * (slices + 1) + j
-            b = a + slices + 1
-            if i > 0:
-                triangles.append((a, b, a + 1))
-            if i < stacks - 1:
-                triangles.append((a + 1, b, b + 1))
-    return positions, triangles
+from uv_sphere import sphere
 
 
 def main():
@@ -39,7 +22,7 @@ def main():
     count = int(sys.argv[2]) if len(sys.argv) > 2 else 5
     if not 1 <= count <= 16:
         sys.exit("make_material_grid.py: count must be 1 to 16")
-    positions, triangles = sphere(24, 48)
+    positions, _, _, triangles = sphere(1.0, 24, 48)
     floor = [(-1, 0, -1), (1, 0, -1), (1, 0, 1), (-1, 0, 1)]
     blob = bytearray()
     views = []

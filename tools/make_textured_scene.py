@@ -18,6 +18,8 @@ import sys
 import zlib
 from pathlib import Path
 
+from uv_sphere import sphere
+
 
 def png(width, height, pixel):
     """An 8-bit RGB PNG of pixel(x, y) -> (r, g, b)."""
@@ -149,27 +151,6 @@ def box():
                 normals.append(tuple(n))
                 texcoords.append(st)
             triangles += [(base, base + 1, base + 2), (base, base + 2, base + 3)]
-    return positions, normals, texcoords, triangles
-
-
-def sphere(radius, stacks, slices):
-    positions, normals, texcoords, triangles = [], [], [], []
-    for i in range(stacks + 1):
-        theta = math.pi * i / stacks
-        for j in range(slices + 1):
-            phi = 2 * math.pi * j / slices
-            n = (math.sin(theta) * math.cos(phi), math.cos(theta), -math.sin(theta) * math.sin(phi))
-            positions.append(tuple(radius * c for c in n))
-            normals.append(n)
-            texcoords.append((j / slices, i / stacks))
-    for i in range(stacks):
-        for j in range(slices):
-            a = i * (slices + 1) + j
-            b = a + slices + 1
-            if i > 0:
-                triangles.append((a, b, a + 1))
-            if i < stacks - 1:
-                triangles.append((a + 1, b, b + 1))
     return positions, normals, texcoords, triangles
 
 
