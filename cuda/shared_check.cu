@@ -7,6 +7,7 @@
 #include "../shared/photon_map.h"
 #include "../shared/photon_trace.h"
 #include "../shared/progressive.h"
+#include "../shared/stages.h"
 #include "../shared/tonemap.h"
 
 namespace photon {
@@ -18,7 +19,7 @@ __global__ void sharedCheck(Bindings bindings) {
     uvec2 key = photonSortKey(bindings, MAP_CAUSTIC, i);
     PhotonPath path = startPhotonPath(bindings, i);
     Photon p;
-    uint store = photonBounce(bindings, path, p) + key.x + photonSortKeyBits(bindings, MAP_GLOBAL);
+    uint store = photonBounce(bindings, path, p) + key.x + photonSortKeyBits(bindings.params, MAP_GLOBAL);
     bindings.hitPoints[i] = tracePixel(bindings, i);
     bindings.frameRadiance[i] = vec4(gatherPixel(bindings, i), float(store));
     bindings.accumulation[i] = accumulateMean(bindings.accumulation[i], bindings.frameRadiance[i], bindings.params.accumulated);

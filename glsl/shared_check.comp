@@ -17,6 +17,7 @@
 #include "../shared/gather.h"
 #include "../shared/progressive.h"
 #include "../shared/sppm.h"
+#include "../shared/stages.h"
 #include "../shared/tonemap.h"
 
 layout(local_size_x = 64) in;
@@ -30,7 +31,7 @@ void main() {
     uvec2 key = photonSortKey(MAP_CAUSTIC, i);
     PhotonPath path = startPhotonPath(i);
     Photon p;
-    uint store = photonBounce(path, p) + key.x + photonSortKeyBits(MAP_GLOBAL);
+    uint store = photonBounce(path, p) + key.x + photonSortKeyBits(params, MAP_GLOBAL);
     hitPoints[i] = tracePixel(i);
     frameRadiance[i] = vec4(gatherPixel(i) + gatherStage(i, ESTIMATOR_SPPM, GLOBAL_DIRECT), float(store));
     accumulation[i] = accumulatePixel(i);

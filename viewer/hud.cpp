@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <utility>
+#include <vector>
 
 #include <imgui.h>
 
@@ -67,10 +69,12 @@ void statsSection(const HudInfo& info) {
     if (ImGui::BeginTable("stages", 2, ImGuiTableFlags_SizingFixedFit)) {
         const StageTimes& s = info.frame.stages;
         const PassTimes& p = info.frame.passes;
-        const std::pair<const char*, double> rows[] = {
-            {"tracePhotons", s.tracePhotons}, {"buildGrid", s.buildGrid}, {"tracePixels", s.tracePixels},
-            {"gather", s.gather},             {"accumulate", s.accumulate}, {"photon dots", p.dots},
-            {"display", p.display},           {"HUD", p.hud},             {"GPU total", s.total() + p.total()}};
+        std::vector<std::pair<const char*, double>> rows;
+        for (const StageInfo& stage : kStages) {
+            rows.push_back({stage.name, s[stage.id]});
+        }
+        rows.insert(rows.end(),
+                    {{"photon dots", p.dots}, {"display", p.display}, {"HUD", p.hud}, {"GPU total", s.total() + p.total()}});
         for (const auto& [name, ms] : rows) {
             ImGui::TableNextRow();
             ImGui::TableSetColumnIndex(0);

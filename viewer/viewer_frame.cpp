@@ -149,7 +149,8 @@ void Viewer::finishFrame() {
     record.stages = stats.ms;
     record.passes = passTimer_->read();
     double paths = double(stats.emitted[MAP_GLOBAL]) + double(stats.emitted[MAP_CAUSTIC]);
-    record.photonsPerSecond = stats.ms.tracePhotons > 0.0 ? paths / (stats.ms.tracePhotons * 1e-3) : 0.0;
+    double photonMs = stats.ms[STAGE_TRACE_PHOTONS];
+    record.photonsPerSecond = photonMs > 0.0 ? paths / (photonMs * 1e-3) : 0.0;
     log_.add(record);
 
     if (!frame_.screenshot.empty()) {
