@@ -23,6 +23,7 @@
 #include "apps/render_options.h"
 #include "apps/scene_stats.h"
 #include "core/error.h"
+#include "core/median.h"
 #include "core/output_file.h"
 #include "core/setting_specs.h"
 #include "core/buffers.h"
@@ -54,12 +55,6 @@ struct Row {
     std::uint64_t triangles = 0;
     double primaryRaysPerSecond = 0.0;  // --primary-rays, CUDA
 };
-
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    std::size_t n = v.size();
-    return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
-}
 
 std::vector<std::string> split(const std::string& s) {
     std::vector<std::string> out;
@@ -145,41 +140,59 @@ Row measure(Backend& backend, const Scene& scene, RenderSettings settings, std::
     for (std::uint32_t f = 1; f < warmup; ++f) {
         backend.renderFrame();
     }
-    std::vector<double> stage[5];
+    std::vector<double> stage[STAGE_COUNT];
     std::vector<double> total;
     for (std::uint32_t f = 0; f < frames; ++f) {
         backend.renderFrame();
         const StageTimes& t = backend.lastFrameStats().ms;
-        double values[5] = {t.tracePhotons, t.buildGrid, t.tracePixels, t.gather, t.accumulate};
-        for (int i = 0; i < 5; ++i) {
-            stage[i].push_back(values[i]);
+        for (const StageInfo& s : kStages) {
+            stage[s.id].push_back(t[s.id]);
         }
         total.push_back(t.total());
     }
-    row.median = {median(stage[0]), median(stage[1]), median(stage[2]), median(stage[3]), median(stage[4])};
+    for (const StageInfo& s : kStages) {
+        row.median[s.id] = median(stage[s.id]);
+    }
     row.frameMs = median(total);
     const FrameStats& s = backend.lastFrameStats();
-    row.storedPhotons = double(s.stored[MAP_GLOBAL]) + double(s.stored[MAP_CAUSTIC]);
+    row.storedPhotons = double(s.storedPhotons());
     return row;
 }
 
+// Photon paths per millisecond of the photon pass, and stored photons per millisecond of the grid
+// build (0 without a time).
+double photonsPerMs(const Row& r) {
+    double ms = r.median[STAGE_TRACE_PHOTONS];
+    return ms > 0 ? r.photons / ms : 0.0;
+}
+double gridPhotonsPerMs(const Row& r) {
+    double ms = r.median[STAGE_BUILD_GRID];
+    return ms > 0 ? r.storedPhotons / ms : 0.0;
+}
+
 void printHeader() {
-    std::printf("%-9s %-7s %-10s %9s %-26s %9s %9s %9s %9s %9s %9s %9s %9s\n", "scene", "backend", "resolution",
-                "photons", "variant", "trace ph", "grid", "trace px", "gather", "accum", "frame ms", "Mphot/s",
-                "grid G/s");
+    std::printf("%-9s %-7s %-10s %9s %-26s", "scene", "backend", "resolution", "photons", "variant");
+    for (const StageInfo& s : kStages) {
+        std::printf(" %9s", s.label);
+    }
+    std::printf(" %9s %9s %9s\n", "frame ms", "Mphot/s", "grid G/s");
 }
 
 void printRow(const Row& r) {
-    double photonRate = r.median.tracePhotons > 0 ? r.photons / r.median.tracePhotons / 1e3 : 0.0;
-    double gridRate = r.median.buildGrid > 0 ? r.storedPhotons / r.median.buildGrid / 1e6 : 0.0;
-    std::printf("%-9s %-7s %4ux%-5u %9u %-26s %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.1f %9.2f\n", r.scene.c_str(),
-                r.backend.c_str(), r.width, r.height, r.photons, r.variant.c_str(), r.median.tracePhotons,
-                r.median.buildGrid, r.median.tracePixels, r.median.gather, r.median.accumulate, r.frameMs, photonRate,
-                gridRate);
+    std::printf("%-9s %-7s %4ux%-5u %9u %-26s", r.scene.c_str(), r.backend.c_str(), r.width, r.height, r.photons,
+                r.variant.c_str());
+    for (const StageInfo& s : kStages) {
+        std::printf(" %9.3f", r.median[s.id]);
+    }
+    std::printf(" %9.3f %9.1f %9.2f\n", r.frameMs, photonsPerMs(r) / 1e3, gridPhotonsPerMs(r) / 1e6);
     std::fflush(stdout);
 }
 
 nlohmann::json toJson(const Row& r) {
+    nlohmann::json stages;
+    for (const StageInfo& s : kStages) {
+        stages[s.name] = r.median[s.id];
+    }
     return {{"scene", r.scene},
             {"backend", r.backend},
             {"device", r.device},
@@ -187,16 +200,11 @@ nlohmann::json toJson(const Row& r) {
             {"height", r.height},
             {"photons", r.photons},
             {"variant", r.variant},
-            {"stages_ms",
-             {{"tracePhotons", r.median.tracePhotons},
-              {"buildGrid", r.median.buildGrid},
-              {"tracePixels", r.median.tracePixels},
-              {"gather", r.median.gather},
-              {"accumulate", r.median.accumulate}}},
+            {"stages_ms", stages},
             {"frame_ms", r.frameMs},
             {"stored_photons", r.storedPhotons},
-            {"photons_per_second", r.median.tracePhotons > 0 ? r.photons / r.median.tracePhotons * 1e3 : 0.0},
-            {"grid_photons_per_second", r.median.buildGrid > 0 ? r.storedPhotons / r.median.buildGrid * 1e3 : 0.0},
+            {"photons_per_second", photonsPerMs(r) * 1e3},
+            {"grid_photons_per_second", gridPhotonsPerMs(r) * 1e3},
             {"first_image_ms", r.firstImageMs},
             {"triangles", r.triangles},
             {"primary_rays_per_second", r.primaryRaysPerSecond}};
@@ -207,6 +215,11 @@ void writeOutputs(const std::vector<Row>& rows, const std::string& jsonPath, con
     if (!jsonPath.empty()) {
         nlohmann::json j;
         j["process_start_to_first_image_ms"] = processToFirstImageMs;
+        // The stages in the order a frame runs them (the keys of stages_ms come out sorted).
+        j["stages"] = nlohmann::json::array();
+        for (const StageInfo& s : kStages) {
+            j["stages"].push_back(s.name);
+        }
         j["rows"] = nlohmann::json::array();
         for (const Row& r : rows) {
             j["rows"].push_back(toJson(r));
@@ -215,24 +228,31 @@ void writeOutputs(const std::vector<Row>& rows, const std::string& jsonPath, con
     }
     if (!csvPath.empty()) {
         std::ostringstream csv;
-        csv << "scene,backend,device,width,height,photons,variant,tracePhotons,buildGrid,tracePixels,gather,accumulate,"
-               "frame_ms,stored_photons,first_image_ms\n";
+        csv << "scene,backend,device,width,height,photons,variant,";
+        for (const StageInfo& s : kStages) {
+            csv << s.name << ",";
+        }
+        csv << "frame_ms,stored_photons,first_image_ms\n";
         for (const Row& r : rows) {
             csv << r.scene << "," << r.backend << ",\"" << r.device << "\"," << r.width << "," << r.height << ","
-                << r.photons << "," << r.variant << "," << r.median.tracePhotons << "," << r.median.buildGrid << ","
-                << r.median.tracePixels << "," << r.median.gather << "," << r.median.accumulate << "," << r.frameMs
-                << "," << r.storedPhotons << "," << r.firstImageMs << "\n";
+                << r.photons << "," << r.variant << ",";
+            for (const StageInfo& s : kStages) {
+                csv << r.median[s.id] << ",";
+            }
+            csv << r.frameMs << "," << r.storedPhotons << "," << r.firstImageMs << "\n";
         }
         writeOutputFile(csvPath, csv.str(), "CSV table");
     }
 }
 
 // Runs `measure` once per CUDA launch shape (threads per photon block, pixel tile).
+// Each shape starts from the backend's own configuration (its gridBlocks follow the device's SMs).
 void sweepLaunchShapes([[maybe_unused]] Backend& backend, [[maybe_unused]] const std::function<void(const std::string&)>& measure) {
 #ifdef PHOTON_HAVE_CUDA
+    const LaunchConfig start = cudaLaunchConfig(backend);
     for (std::uint32_t photonBlock : {64u, 128u, 256u}) {
         for (auto [bx, by] : {std::pair{8u, 8u}, {16u, 8u}, {32u, 4u}, {16u, 16u}, {32u, 8u}}) {
-            LaunchConfig c;
+            LaunchConfig c = start;
             c.photonBlock = photonBlock;
             c.pixelBlockX = bx;
             c.pixelBlockY = by;
@@ -240,14 +260,14 @@ void sweepLaunchShapes([[maybe_unused]] Backend& backend, [[maybe_unused]] const
             measure(std::to_string(photonBlock) + "/" + std::to_string(bx) + "x" + std::to_string(by));
         }
     }
-    setCudaLaunchConfig(backend, LaunchConfig{});
+    setCudaLaunchConfig(backend, start);
 #endif
 }
 
 // The CUDA backend's readback through pageable memory instead of pinned (no effect elsewhere).
 void setPageableReadback([[maybe_unused]] Backend& backend, [[maybe_unused]] bool pageable) {
 #ifdef PHOTON_HAVE_CUDA
-    LaunchConfig c;
+    LaunchConfig c = cudaLaunchConfig(backend);
     c.pinnedReadback = !pageable;
     setCudaLaunchConfig(backend, c);
 #endif

@@ -23,6 +23,7 @@
 #include "apps/render_options.h"
 #include "apps/scene_stats.h"
 #include "core/error.h"
+#include "core/median.h"
 #include "core/output_file.h"
 #include "core/scene_loader.h"
 #include "core/setting_specs.h"
@@ -30,36 +31,16 @@
 namespace photon {
 namespace {
 
-double median(std::vector<double> v) {
-    if (v.empty()) {
-        return 0.0;
-    }
-    std::sort(v.begin(), v.end());
-    std::size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 nlohmann::json stageJson(const std::vector<StageTimes>& frames) {
-    auto column = [&](double StageTimes::*member) {
-        std::vector<double> v;
-        for (const StageTimes& t : frames) {
-            v.push_back(t.*member);
-        }
-        return v;
-    };
     nlohmann::json stages;
-    const std::pair<const char*, double StageTimes::*> kStages[] = {{"tracePhotons", &StageTimes::tracePhotons},
-                                                                    {"buildGrid", &StageTimes::buildGrid},
-                                                                    {"tracePixels", &StageTimes::tracePixels},
-                                                                    {"gather", &StageTimes::gather},
-                                                                    {"accumulate", &StageTimes::accumulate}};
-    for (const auto& [name, member] : kStages) {
-        std::vector<double> v = column(member);
+    for (const StageInfo& stage : kStages) {
+        std::vector<double> v;
         double sum = 0.0;
-        for (double x : v) {
-            sum += x;
+        for (const StageTimes& t : frames) {
+            v.push_back(t[stage.id]);
+            sum += t[stage.id];
         }
-        stages[name] = {{"median_ms", median(v)}, {"total_ms", sum}};
+        stages[stage.name] = {{"median_ms", median(v)}, {"total_ms", sum}};
     }
     std::vector<double> totals;
     for (const StageTimes& t : frames) {
@@ -87,10 +68,9 @@ void writeStats(const std::string& path, Backend& backend, const std::vector<Sta
     const char* kMapNames[] = {"global", "caustic"};
     for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
         GridStats g = gridStats(maps.cellStart[m]);
-        nlohmann::json capacity = last.capacity[m] == NONE ? nlohmann::json() : nlohmann::json(last.capacity[m]);
         j["photons"][kMapNames[m]] = {{"emitted_paths", last.emitted[m]},
                                        {"stored", last.stored[m]},
-                                       {"capacity", capacity},
+                                       {"capacity", last.capacity[m]},
                                        {"radius", backend.lastFrameParams().grids[m].radius}};
         j["grid"][kMapNames[m]] = {{"kind", toString(s.grid)},
                                     {"cells", g.cells},
@@ -196,10 +176,10 @@ int run(int argc, char** argv) {
     }
     if (!quiet) {
         const FrameStats& last = backend->lastFrameStats();
-        std::fprintf(stderr, "%s on %s: %ux%u, %u frame%s in %.2f s (%.1f ms/frame), photons stored %u global, %u caustic -> %s\n",
+        std::fprintf(stderr, "%s on %s: %ux%u, %u frame%s in %.2f s (%.1f ms/frame), photons stored %s -> %s\n",
                      backend->name().c_str(), backend->deviceName().c_str(), settings.width, settings.height, frames,
-                     frames == 1 ? "" : "s", wall, 1000.0 * wall / frames, last.stored[MAP_GLOBAL],
-                     last.stored[MAP_CAUSTIC], output.c_str());
+                     frames == 1 ? "" : "s", wall, 1000.0 * wall / frames, last.storedList().c_str(),
+                     output.c_str());
     }
     return 0;
 }

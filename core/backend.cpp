@@ -81,7 +81,7 @@ void Backend::prepare() {
     adjustPlan(plan, budget);
     checkMemory(plan, memoryLimits(), settings_.width, settings_.height);
     std::uint64_t hostImage = std::uint64_t(settings_.width) * settings_.height * kHostBytesPerPixel;
-    if (name() != "cpu" && hostImage > availableHostMemory()) {
+    if (!buffersInHostMemory() && hostImage > availableHostMemory()) {
         throw InputError("the image needs " + formatMiB(hostImage) + " of host memory at " + std::to_string(settings_.width) +
                          "x" + std::to_string(settings_.height) + ", more than this machine has available; " +
                          whatToLower(BUFFER_PER_PIXEL));
@@ -116,6 +116,14 @@ void Backend::renderFrame() {
             break;
         }
     }
+}
+
+FrameResult Backend::runFrame(const FrameParams& params) {
+    beginStages(params);
+    for (const StageInfo& stage : kStages) {
+        runStage(stage.id, params);
+    }
+    return endStages();
 }
 
 void Backend::measureRadii() {

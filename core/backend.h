@@ -3,14 +3,11 @@
 // what it needs (core/buffers.h), its statistics and the readbacks of its results are worked out
 // here once for all backends.
 //
-// A frame runs five stages, named alike in every backend:
-//   tracePhotons  emit photons from the lights and follow them, appending to the two maps
-//   buildGrid     sort each map's photons by grid cell (count, exclusive scan, scatter)
-//   tracePixels   eye paths through mirrors and glass to hit points, with direct light
-//   gather        photon density estimates (and final gather) at the hit points
-//   accumulate    fold the frame into the running mean
+// A frame runs the stages of shared/stages.h in their order (runFrame() here), each named alike
+// in every backend.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -24,17 +21,22 @@
 #include "scene.h"
 #include "settings.h"
 #include "shared/layout.h"
+#include "shared/stages.h"
 
 namespace photon {
 
-// Milliseconds of each stage of one frame (device time on GPUs).
+// Milliseconds of each stage of one frame (device time on GPUs), by STAGE_*.
 struct StageTimes {
-    double tracePhotons = 0.0;
-    double buildGrid = 0.0;
-    double tracePixels = 0.0;
-    double gather = 0.0;
-    double accumulate = 0.0;
-    double total() const { return tracePhotons + buildGrid + tracePixels + gather + accumulate; }
+    double ms[STAGE_COUNT] = {};
+    double& operator[](std::uint32_t stage) { return ms[stage]; }
+    double operator[](std::uint32_t stage) const { return ms[stage]; }
+    double total() const {
+        double sum = 0.0;
+        for (double t : ms) {
+            sum += t;
+        }
+        return sum;
+    }
 };
 
 // What a backend reports of a frame it ran: the stage times and the counters buffer.
@@ -43,11 +45,35 @@ struct FrameResult {
     std::uint32_t counters[COUNTER_COUNT] = {};
 };
 
+// The photon maps as reports name them, by map id.
+inline constexpr const char* kMapNames[MAP_COUNT] = {"global", "caustic"};
+
 struct FrameStats {
     StageTimes ms;
     std::uint32_t emitted[MAP_COUNT] = {};   // paths of the global and the caustic pass
     std::uint32_t stored[MAP_COUNT] = {};    // photons that reached each map
     std::uint32_t capacity[MAP_COUNT] = {};  // room in each map; photons beyond it were dropped
+
+    std::uint64_t emittedPaths() const { return sum(emitted); }
+    std::uint64_t storedPhotons() const { return sum(stored); }
+    // The photons each map kept, "12 global, 3 caustic" (of `stored`, or only those within capacity).
+    std::string storedList(bool withinCapacity = false) const {
+        std::string list;
+        for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
+            std::uint32_t n = withinCapacity ? std::min(stored[m], capacity[m]) : stored[m];
+            list += (m == 0 ? "" : ", ") + std::to_string(n) + " " + kMapNames[m];
+        }
+        return list;
+    }
+
+private:
+    static std::uint64_t sum(const std::uint32_t (&values)[MAP_COUNT]) {
+        std::uint64_t total = 0;
+        for (std::uint32_t v : values) {
+            total += v;
+        }
+        return total;
+    }
 };
 
 // A readback of both photon maps: each map's photons in cell order, and its cell ranges
@@ -98,7 +124,7 @@ public:
     // endFrame() takes its stats once it has run, grows the photon maps as renderFrame() does and
     // counts the frame. It returns false, without counting, for a first frame that lost photons:
     // the next frame repeats it with room for them (only if mayRepeat). renderFrame() is exactly
-    // beginFrame(), runFrame(), endFrame(). Change nothing between the two calls.
+    // beginFrame(), the stages (runFrame()), endFrame(). Change nothing between the two calls.
     const FrameParams& beginFrame();
     bool endFrame(const FrameResult& result, bool mayRepeat = true);
 
@@ -121,6 +147,10 @@ public:
     // What this backend may allocate now (what it holds already counts as free).
     virtual MemoryLimits memoryLimits() = 0;
 
+    // Whether the buffers live in host memory (the CPU backend): then the memory check already
+    // counts the image's host copies (adjustPlan), else they are checked against host memory apart.
+    virtual bool buffersInHostMemory() const { return false; }
+
 protected:
     // Entries a backend adds for its own scheduling (Vulkan: the levels of its scan in cellStart).
     virtual void adjustPlan(BufferPlan& plan, const PhotonBudget& budget) { (void)plan, (void)budget; }
@@ -129,11 +159,16 @@ protected:
     // Every buffer that is not the scene's, sized as the plan says; contents need not be kept.
     virtual void allocate(const BufferPlan& plan, const PhotonBudget& budget, std::uint32_t width,
                           std::uint32_t height) = 0;
-    virtual FrameResult runFrame(const FrameParams& params) = 0;
+    // One frame: beginStages(), runStage() for each stage of shared/stages.h in order, endStages()
+    // (which waits for the frame and returns its times and counters).
+    virtual void beginStages(const FrameParams& params) = 0;
+    virtual void runStage(std::uint32_t stage, const FrameParams& params) = 0;
+    virtual FrameResult endStages() = 0;
     // `bytes` bytes of the buffer at `binding`, from byte `offset`, after every earlier frame.
     virtual void readBuffer(std::uint32_t binding, std::uint64_t offset, std::uint64_t bytes, void* data) = 0;
 
 private:
+    FrameResult runFrame(const FrameParams& params);
     Image readImage(std::uint32_t binding);
     // The footprints and first radii of the camera, if it, the scene or the settings changed.
     void measureRadii();

@@ -6,11 +6,15 @@
 #include <algorithm>
 #include <fstream>
 #include <cstdio>
+#include <cstring>
 #include <stdexcept>
+#include <vector>
 
 #include "error.h"
 
 namespace photon {
+
+static_assert(BUFFER_SIZE_CLASS_COUNT == 6u, "a new BUFFER_PER_* class needs its case in planBuffers and whatToLower");
 
 std::uint64_t BufferPlan::bytes(std::uint32_t binding) const {
     std::uint64_t element = binding == BINDING_PARAMS ? sizeof(FrameParams) : bufferInfo(binding).elementBytes;
@@ -42,6 +46,41 @@ BufferPlan planBuffers(const Scene& scene, const PhotonBudget& budget, std::uint
         plan.elements[info.binding] = n;
     }
     return plan;
+}
+
+void resizeChangedBuffers(const BufferPlan& plan, const std::function<bool(std::uint32_t, std::uint64_t)>& holds,
+                          const std::function<void(std::uint32_t, std::uint64_t)>& resize) {
+    std::vector<std::uint32_t> changed;
+    for (const BufferInfo& info : kBuffers) {
+        if (info.size != BUFFER_PER_SCENE && !holds(info.binding, plan.bytes(info.binding))) {
+            changed.push_back(info.binding);
+            resize(info.binding, 0);
+        }
+    }
+    for (std::uint32_t binding : changed) {
+        resize(binding, plan.bytes(binding));
+    }
+}
+
+void forEachSceneBuffer(const Scene& scene, const BufferPlan& plan,
+                        const std::function<void(std::uint32_t, const void*, std::uint64_t)>& upload) {
+    for (const BufferInfo& info : kBuffers) {
+        if (info.size != BUFFER_PER_SCENE) {
+            continue;
+        }
+        std::uint64_t bytes = plan.bytes(info.binding);
+        HostArray array = sceneArray(scene, info.binding);
+        std::uint64_t arrayBytes = array.count * info.elementBytes;
+        if (arrayBytes == bytes) {
+            upload(info.binding, array.data, bytes);
+            continue;
+        }
+        std::vector<unsigned char> padded(bytes, 0);
+        if (arrayBytes > 0) {
+            std::memcpy(padded.data(), array.data, std::min(arrayBytes, bytes));
+        }
+        upload(info.binding, padded.data(), bytes);
+    }
 }
 
 const char* whatToLower(std::uint32_t sizeClass) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 
 #include "frame_setup.h"
@@ -22,6 +23,19 @@ struct BufferPlan {
 };
 
 BufferPlan planBuffers(const Scene& scene, const PhotonBudget& budget, std::uint32_t width, std::uint32_t height);
+
+// Resizes the buffers (not the scene's) whose size the plan changes: `holds(binding, bytes)` says
+// whether the backend's buffer at `binding` already fits `bytes`; `resize(binding, bytes)` frees
+// it (bytes 0) or allocates it zeroed. Buffers whose size is unchanged are kept (a grown photon
+// map keeps the accumulated image); the others are all freed before any is allocated, so that old
+// and new need not fit together.
+void resizeChangedBuffers(const BufferPlan& plan, const std::function<bool(std::uint32_t, std::uint64_t)>& holds,
+                          const std::function<void(std::uint32_t, std::uint64_t)>& resize);
+
+// Calls upload(binding, data, bytes) for each scene array (size class SCENE), `bytes` as the plan
+// sizes its buffer: the array itself, or one zeroed element when it is empty.
+void forEachSceneBuffer(const Scene& scene, const BufferPlan& plan,
+                        const std::function<void(std::uint32_t, const void*, std::uint64_t)>& upload);
 
 // What a backend may allocate: all buffers together, and one buffer alone.
 struct MemoryLimits {

@@ -51,6 +51,7 @@ public:
     std::string name() const override { return "cpu"; }
 
     std::string deviceName() const override { return "CPU (" + std::to_string(workerThreads()) + " threads)"; }
+    bool buffersInHostMemory() const override { return true; }
 
     MemoryLimits memoryLimits() override {
         MemoryLimits limits;
@@ -69,49 +70,30 @@ protected:
     // The scene stays where the Backend keeps it; the stages read its arrays in place.
     void uploadScene(const Scene& scene, const BufferPlan&) override { scene_ = &scene; }
 
-    // Buffers whose size is unchanged are kept (a grown photon map keeps the accumulated image);
-    // the others are freed before any is allocated, so that old and new need not fit together.
     void allocate(const BufferPlan& plan, const PhotonBudget&, std::uint32_t width, std::uint32_t height) override {
-        std::vector<std::uint32_t> changed;
-        for (const BufferInfo& info : kBuffers) {
-            if (info.size != BUFFER_PER_SCENE && buffers_.bytes(info.binding) != paddedBytes(plan.bytes(info.binding))) {
-                changed.push_back(info.binding);
-                buffers_.resize(info.binding, 0);
-            }
-        }
-        for (std::uint32_t binding : changed) {
-            buffers_.resize(binding, plan.bytes(binding));
-        }
+        resizeChangedBuffers(
+            plan, [&](std::uint32_t binding, std::uint64_t bytes) { return buffers_.bytes(binding) == paddedBytes(bytes); },
+            [&](std::uint32_t binding, std::uint64_t bytes) { buffers_.resize(binding, bytes); });
         pixels_ = std::size_t(width) * height;
     }
 
-    FrameResult runFrame(const FrameParams& params) override {
+    void beginStages(const FrameParams& params) override {
         bind(params);
-        FrameResult result;
+        result_ = FrameResult{};
+    }
+
+    // Each stage by its function below, timed on the host's steady clock.
+    void runStage(std::uint32_t stage, const FrameParams&) override {
+#define PH_CPU_STAGE(NAME, id, name, label) &CpuBackend::name,
+        static constexpr void (CpuBackend::*kRun[])() = {PH_STAGES(PH_CPU_STAGE)};
         auto t = std::chrono::steady_clock::now();
-        tracePhotons();
-        result.ms.tracePhotons = millisecondsSince(t);
+        (this->*kRun[stage])();
+        result_.ms[stage] = millisecondsSince(t);
+    }
 
-        t = std::chrono::steady_clock::now();
-        buildGrid();
-        result.ms.buildGrid = millisecondsSince(t);
-
-        t = std::chrono::steady_clock::now();
-        forEachPixel([&](std::uint32_t p) { bindings_.hitPoints[p] = tracePixel(bindings_, p); });
-        result.ms.tracePixels = millisecondsSince(t);
-
-        t = std::chrono::steady_clock::now();
-        forEachPixel([&](std::uint32_t p) {
-            bindings_.frameRadiance[p] = glm::vec4(gatherStage(bindings_, p, params.estimator, params.globalMode), 1.0f);
-        });
-        result.ms.gather = millisecondsSince(t);
-
-        t = std::chrono::steady_clock::now();
-        forEachPixel([&](std::uint32_t p) { bindings_.accumulation[p] = accumulatePixel(bindings_, p); });
-        result.ms.accumulate = millisecondsSince(t);
-
-        std::copy(bindings_.counters, bindings_.counters + COUNTER_COUNT, result.counters);
-        return result;
+    FrameResult endStages() override {
+        std::copy(bindings_.counters, bindings_.counters + COUNTER_COUNT, result_.counters);
+        return result_;
     }
 
     void readBuffer(std::uint32_t binding, std::uint64_t offset, std::uint64_t bytes, void* data) override {
@@ -173,6 +155,21 @@ private:
         }
     }
 
+    void tracePixels() {
+        forEachPixel([&](std::uint32_t p) { bindings_.hitPoints[p] = tracePixel(bindings_, p); });
+    }
+
+    void gather() {
+        const FrameParams& params = bindings_.params;
+        forEachPixel([&](std::uint32_t p) {
+            bindings_.frameRadiance[p] = glm::vec4(gatherStage(bindings_, p, params.estimator, params.globalMode), 1.0f);
+        });
+    }
+
+    void accumulate() {
+        forEachPixel([&](std::uint32_t p) { bindings_.accumulation[p] = accumulatePixel(bindings_, p); });
+    }
+
     template <typename PixelFn>
     void forEachPixel(const PixelFn& fn) {
         parallelFor(pixels_, kPixelChunk, [&](std::size_t first, std::size_t last) {
@@ -186,6 +183,7 @@ private:
     HostBuffers buffers_;
     Bindings bindings_{};
     std::size_t pixels_ = 0;
+    FrameResult result_;  // of the frame in flight
 };
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "cuda_backend.h"
 
 #include <algorithm>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -8,12 +9,13 @@
 #include "cuda_check.h"
 #include "device_memory.h"
 #include "photon_sort.h"
+#include "shared/photon_map.h"
 
 namespace photon {
 namespace {
 
-// Stage boundaries timed with CUDA events.
-enum Mark { kStart, kPhotonsTraced, kGridBuilt, kPixelsTraced, kGathered, kAccumulated, kMarkCount };
+// Stage boundaries timed with CUDA events: the frame's start, then the end of each stage.
+constexpr std::uint32_t kMarkCount = STAGE_COUNT + 1;
 
 class CudaBackend final : public Backend {
 public:
@@ -61,6 +63,7 @@ public:
     std::string deviceName() const override { return std::string(properties_.name) + (parity_ ? " (parity build)" : ""); }
 
     void setLaunchConfig(const LaunchConfig& config) { config_ = config; }
+    const LaunchConfig& launchConfig() const { return config_; }
 
     MemoryLimits memoryLimits() override {
         std::size_t freeBytes = 0;
@@ -87,93 +90,56 @@ protected:
     }
 
     void uploadScene(const Scene& scene, const BufferPlan& plan) override {
-        for (const BufferInfo& info : kBuffers) {
-            if (info.size != BUFFER_PER_SCENE) {
-                continue;
-            }
-            DeviceArray<unsigned char>& buffer = buffers_[info.binding];
-            buffer.resize(plan.bytes(info.binding), "upload scene");
-            HostArray array = sceneArray(scene, info.binding);
-            CUDA_CHECK(cudaMemset(buffer.data(), 0, buffer.bytes()), "upload scene");
-            if (array.count > 0) {
-                CUDA_CHECK(cudaMemcpy(buffer.data(), array.data, array.count * info.elementBytes, cudaMemcpyHostToDevice),
-                           "upload scene");
-            }
-        }
+        forEachSceneBuffer(scene, plan, [&](std::uint32_t binding, const void* data, std::uint64_t bytes) {
+            DeviceArray<unsigned char>& buffer = buffers_[binding];
+            buffer.resize(bytes, "upload scene");
+            CUDA_CHECK(cudaMemcpy(buffer.data(), data, bytes, cudaMemcpyHostToDevice), "upload scene");
+        });
     }
 
     void allocate(const BufferPlan& plan, const PhotonBudget& budget, std::uint32_t width, std::uint32_t height) override {
-        // Buffers whose size is unchanged are kept (a grown photon map keeps the accumulated
-        // image); the others are freed before any is allocated, so that old and new need not fit
-        // together.
-        std::vector<std::uint32_t> changed;
-        for (const BufferInfo& info : kBuffers) {
-            if (info.size != BUFFER_PER_SCENE && buffers_[info.binding].bytes() != plan.bytes(info.binding)) {
-                changed.push_back(info.binding);
-                buffers_[info.binding].resize(0, "allocate");
-            }
-        }
-        for (std::uint32_t binding : changed) {
-            DeviceArray<unsigned char>& buffer = buffers_[binding];
-            buffer.resize(plan.bytes(binding), bufferInfo(binding).name);
-            CUDA_CHECK(cudaMemset(buffer.data(), 0, buffer.bytes()), bufferInfo(binding).name);
-        }
+        resizeChangedBuffers(
+            plan, [&](std::uint32_t binding, std::uint64_t bytes) { return buffers_[binding].bytes() == bytes; },
+            [&](std::uint32_t binding, std::uint64_t bytes) {
+                DeviceArray<unsigned char>& buffer = buffers_[binding];
+                if (bytes == 0) {
+                    buffer.resize(0, "allocate");
+                    return;
+                }
+                buffer.resize(bytes, bufferInfo(binding).name);
+                CUDA_CHECK(cudaMemset(buffer.data(), 0, buffer.bytes()), bufferInfo(binding).name);
+            });
         scan_.reserve(budget.largestCells() + 1);
         width_ = width;
         height_ = height;
         hostPixels_.resize(std::size_t(width) * height, "allocate image");
     }
 
-    FrameResult runFrame(const FrameParams& params) override {
+    // One stream: each stage's kernels, then an event at its end.
+    void beginStages(const FrameParams& params) override {
         bind(params);
-        const Bindings& b = bindings_;
-        const StageKernels& kernels = *kernels_;
-        CUDA_CHECK(cudaEventRecord(events_[kStart], stream_), "tracePhotons");
-        CUDA_CHECK(cudaMemsetAsync(b.counters, 0, COUNTER_COUNT * sizeof(std::uint32_t), stream_), "tracePhotons");
-        kernels.tracePhotons(b, params.pathCount, config_, stream_);
-        CUDA_CHECK(cudaEventRecord(events_[kPhotonsTraced], stream_), "tracePhotons");
+        CUDA_CHECK(cudaEventRecord(events_[0], stream_), "frame start");
+        CUDA_CHECK(cudaMemsetAsync(bindings_.counters, 0, COUNTER_COUNT * sizeof(std::uint32_t), stream_), "frame start");
+    }
 
-        bool deterministic = (params.flags & FLAG_DETERMINISTIC) != 0u;
-        if (deterministic) {
-            // CUB's sort takes its item count on the host: this build waits for the photon pass.
-            readCounters();
+    void runStage(std::uint32_t stage, const FrameParams& params) override {
+        if (StageLaunch launch = kernels_->stage[stage]) {
+            launch(bindings_, config_, stream_);
+        } else if (stage == STAGE_BUILD_GRID) {
+            buildGrid(params);
+        } else {
+            throw std::logic_error(std::string("CUDA: no kernels for stage ") + kStages[stage].name);
         }
-        for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
-            const GridParams& g = params.grids[m];
-            if (g.photonCapacity == 0) {
-                continue;
-            }
-            kernels.countCells(b, m, config_, stream_);
-            scan_.exclusiveSum(b.cellCounts + g.cellOffset, b.cellStart + g.cellOffset, g.cellCount + 1, stream_);
-            if (deterministic) {
-                std::uint32_t stored = std::min(counters_[COUNTER_STORED + m], g.photonCapacity);
-                sort_.reserve(std::max(stored, 1u));
-                kernels.sortKeys(b, m, stored, sort_.keys(), sort_.indices(), config_, stream_);
-                const std::uint32_t* order = sort_.sort(stored, int(g.keyBits + params.photonIdBits), stream_);
-                kernels.placeSorted(b, m, stored, order, config_, stream_);
-                CUDA_CHECK(cudaMemsetAsync(b.cellCounts + g.cellOffset, 0, (g.cellCount + 1) * sizeof(std::uint32_t), stream_),
-                           "buildGrid (sort)");
-            } else {
-                kernels.scatterPhotons(b, m, config_, stream_);
-            }
-        }
-        CUDA_CHECK(cudaEventRecord(events_[kGridBuilt], stream_), "buildGrid");
+        CUDA_CHECK(cudaEventRecord(events_[stage + 1], stream_), kStages[stage].name);
+    }
 
-        kernels.tracePixels(b, config_, stream_);
-        CUDA_CHECK(cudaEventRecord(events_[kPixelsTraced], stream_), "tracePixels");
-        kernels.gather(b, config_, stream_);
-        CUDA_CHECK(cudaEventRecord(events_[kGathered], stream_), "gather");
-        kernels.accumulate(b, config_, stream_);
-        CUDA_CHECK(cudaEventRecord(events_[kAccumulated], stream_), "accumulate");
+    FrameResult endStages() override {
         readCounters();
-
         FrameResult result;
-        double* stage[] = {&result.ms.tracePhotons, &result.ms.buildGrid, &result.ms.tracePixels, &result.ms.gather,
-                           &result.ms.accumulate};
-        for (int i = 0; i < kMarkCount - 1; ++i) {
+        for (std::uint32_t i = 0; i < STAGE_COUNT; ++i) {
             float ms = 0.0f;
             CUDA_CHECK(cudaEventElapsedTime(&ms, events_[i], events_[i + 1]), "timing");
-            *stage[i] = ms;
+            result.ms[i] = ms;
         }
         std::copy(counters_.data(), counters_.data() + COUNTER_COUNT, result.counters);
         return result;
@@ -225,6 +191,37 @@ public:
     }
 
 private:
+    // Each map's photons into cell order: count, CUB's scan, then the scatter, or under
+    // --deterministic CUB's sort of (cell, id) keys.
+    void buildGrid(const FrameParams& params) {
+        const Bindings& b = bindings_;
+        const StageKernels& kernels = *kernels_;
+        bool deterministic = (params.flags & FLAG_DETERMINISTIC) != 0u;
+        if (deterministic) {
+            // CUB's sort takes its item count on the host: this build waits for the photon pass.
+            readCounters();
+        }
+        for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
+            const GridParams& g = params.grids[m];
+            if (g.photonCapacity == 0) {
+                continue;
+            }
+            kernels.countCells(b, m, config_, stream_);
+            scan_.exclusiveSum(b.cellCounts + g.cellOffset, b.cellStart + g.cellOffset, g.cellCount + 1, stream_);
+            if (deterministic) {
+                std::uint32_t stored = std::min(counters_[COUNTER_STORED + m], g.photonCapacity);
+                sort_.reserve(std::max(stored, 1u));
+                kernels.sortKeys(b, m, stored, sort_.keys(), sort_.indices(), config_, stream_);
+                const std::uint32_t* order = sort_.sort(stored, int(photonSortKeyBits(params, m)), stream_);
+                kernels.placeSorted(b, m, stored, order, config_, stream_);
+                CUDA_CHECK(cudaMemsetAsync(b.cellCounts + g.cellOffset, 0, (g.cellCount + 1) * sizeof(std::uint32_t), stream_),
+                           "grid build (sort)");
+            } else {
+                kernels.scatterPhotons(b, m, config_, stream_);
+            }
+        }
+    }
+
     void bind(const FrameParams& params) {
         void* pointers[BINDING_COUNT] = {};
         for (const BufferInfo& info : kBuffers) {
@@ -276,6 +273,11 @@ std::unique_ptr<Backend> createCudaBackend(const BackendOptions& options) {
 PrimaryRayTiming timeCudaPrimaryRays(Backend& backend, int repeats) {
     auto* cuda = dynamic_cast<CudaBackend*>(&backend);
     return cuda ? cuda->timePrimaryRays(repeats) : PrimaryRayTiming{};
+}
+
+LaunchConfig cudaLaunchConfig(Backend& backend) {
+    auto* cuda = dynamic_cast<CudaBackend*>(&backend);
+    return cuda ? cuda->launchConfig() : LaunchConfig{};
 }
 
 void setCudaLaunchConfig(Backend& backend, const LaunchConfig& config) {

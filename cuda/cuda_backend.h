@@ -16,7 +16,9 @@ std::unique_ptr<Backend> createCudaBackend(const BackendOptions& options);
 // Devices the CUDA runtime sees; 0 when there is no driver or no GPU. Never throws.
 int cudaDeviceCount();
 
-// Launch shapes of a CUDA backend (photon-bench sweeps them). No effect on other backends.
+// Launch shapes of a CUDA backend (photon-bench sweeps them, starting from the backend's own,
+// whose gridBlocks follow the device's SMs). No effect on other backends; they report the defaults.
+LaunchConfig cudaLaunchConfig(Backend& backend);
 void setCudaLaunchConfig(Backend& backend, const LaunchConfig& config);
 
 // photon-bench's probe of the traversal: one ray through every pixel centre of the last frame's

@@ -11,7 +11,7 @@ std::size_t tempBytes(std::uint32_t count) {
                                                static_cast<std::uint64_t*>(nullptr),
                                                static_cast<const std::uint32_t*>(nullptr),
                                                static_cast<std::uint32_t*>(nullptr), int(count)),
-               "buildGrid (sort storage)");
+               "grid build (sort storage)");
     return bytes;
 }
 
@@ -25,11 +25,11 @@ void PhotonSort::reserve(std::uint32_t count) {
     if (count <= reserved_) {
         return;
     }
-    temp_.resize(tempBytes(count), "buildGrid (sort storage)");
-    keys_.resize(count, "buildGrid (sort storage)");
-    sortedKeys_.resize(count, "buildGrid (sort storage)");
-    indices_.resize(count, "buildGrid (sort storage)");
-    sortedIndices_.resize(count, "buildGrid (sort storage)");
+    temp_.resize(tempBytes(count), "grid build (sort storage)");
+    keys_.resize(count, "grid build (sort storage)");
+    sortedKeys_.resize(count, "grid build (sort storage)");
+    indices_.resize(count, "grid build (sort storage)");
+    sortedIndices_.resize(count, "grid build (sort storage)");
     reserved_ = count;
 }
 
@@ -37,7 +37,7 @@ const std::uint32_t* PhotonSort::sort(std::uint32_t count, int keyBits, cudaStre
     std::size_t bytes = temp_.bytes();
     CUDA_CHECK(cub::DeviceRadixSort::SortPairs(temp_.data(), bytes, keys_.data(), sortedKeys_.data(), indices_.data(),
                                                sortedIndices_.data(), int(count), 0, keyBits, stream),
-               "buildGrid (sort)");
+               "grid build (sort)");
     return sortedIndices_.data();
 }
 

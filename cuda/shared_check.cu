@@ -20,6 +20,7 @@
 #include "../shared/rng.h"
 #include "../shared/sampling.h"
 #include "../shared/sppm.h"
+#include "../shared/stages.h"
 #include "../shared/surface.h"
 #include "../shared/texture.h"
 #include "../shared/tonemap.h"
@@ -33,7 +34,7 @@ __global__ void sharedCheck(Bindings bindings) {
     uvec2 key = photonSortKey(bindings, MAP_CAUSTIC, i);
     PhotonPath path = startPhotonPath(bindings, i);
     Photon p;
-    uint store = photonBounce(bindings, path, p) + key.x + photonSortKeyBits(bindings, MAP_GLOBAL);
+    uint store = photonBounce(bindings, path, p) + key.x + photonSortKeyBits(bindings.params, MAP_GLOBAL);
     bindings.hitPoints[i] = tracePixel(bindings, i);
     bindings.frameRadiance[i] = vec4(gatherPixel(bindings, i), float(store));
     bindings.accumulation[i] = accumulateMean(bindings.accumulation[i], bindings.frameRadiance[i], bindings.params.accumulated);

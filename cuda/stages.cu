@@ -105,33 +105,38 @@ dim3 pixelGrid(const Bindings& b, const LaunchConfig& c) {
     return dim3((b.params.width + c.pixelBlockX - 1) / c.pixelBlockX, (b.params.height + c.pixelBlockY - 1) / c.pixelBlockY);
 }
 
-void tracePhotons(const Bindings& b, std::uint32_t paths, const LaunchConfig& c, cudaStream_t s) {
+// Paths [0, pathCount), appending photons to both maps.
+void tracePhotons(const Bindings& b, const LaunchConfig& c, cudaStream_t s) {
+    uint paths = b.params.pathCount;
     if (paths > 0) {
         tracePhotonsKernel<<<(paths + c.photonBlock - 1) / c.photonBlock, c.photonBlock, 0, s>>>(b, paths);
         CUDA_CHECK_LAUNCH("tracePhotons");
     }
 }
 
+// Run by the backend in its steps (countCells, its scan, scatterPhotons or the sort).
+constexpr StageLaunch buildGrid = nullptr;
+
 void countCells(const Bindings& b, std::uint32_t map, const LaunchConfig& c, cudaStream_t s) {
     countCellsKernel<<<c.gridBlocks, 256, 0, s>>>(b, map);
-    CUDA_CHECK_LAUNCH("buildGrid (count)");
+    CUDA_CHECK_LAUNCH("grid build (count)");
 }
 
 void scatterPhotons(const Bindings& b, std::uint32_t map, const LaunchConfig& c, cudaStream_t s) {
     scatterPhotonsKernel<<<c.gridBlocks, 256, 0, s>>>(b, map);
-    CUDA_CHECK_LAUNCH("buildGrid (scatter)");
+    CUDA_CHECK_LAUNCH("grid build (scatter)");
 }
 
 void sortKeys(const Bindings& b, std::uint32_t map, std::uint32_t count, std::uint64_t* keys, std::uint32_t* indices,
               const LaunchConfig& c, cudaStream_t s) {
     sortKeysKernel<<<c.gridBlocks, 256, 0, s>>>(b, map, count, keys, indices);
-    CUDA_CHECK_LAUNCH("buildGrid (sort keys)");
+    CUDA_CHECK_LAUNCH("grid build (sort keys)");
 }
 
 void placeSorted(const Bindings& b, std::uint32_t map, std::uint32_t count, const std::uint32_t* order,
                  const LaunchConfig& c, cudaStream_t s) {
     placeSortedKernel<<<c.gridBlocks, 256, 0, s>>>(b, map, count, order);
-    CUDA_CHECK_LAUNCH("buildGrid (place sorted)");
+    CUDA_CHECK_LAUNCH("grid build (place sorted)");
 }
 
 void tracePixels(const Bindings& b, const LaunchConfig& c, cudaStream_t s) {
@@ -175,11 +180,13 @@ void accumulate(const Bindings& b, const LaunchConfig& c, cudaStream_t s) {
 
 }  // namespace PHOTON_KERNEL_NAMESPACE
 
+#define PH_STAGE_LAUNCH(NAME, id, name, label) PHOTON_KERNEL_NAMESPACE::name,
 const StageKernels PHOTON_KERNEL_TABLE = {
-    PHOTON_KERNEL_NAMESPACE::tracePhotons, PHOTON_KERNEL_NAMESPACE::countCells,
-    PHOTON_KERNEL_NAMESPACE::scatterPhotons, PHOTON_KERNEL_NAMESPACE::sortKeys,
-    PHOTON_KERNEL_NAMESPACE::placeSorted, PHOTON_KERNEL_NAMESPACE::tracePixels,
-    PHOTON_KERNEL_NAMESPACE::gather, PHOTON_KERNEL_NAMESPACE::accumulate,
+    {PH_STAGES(PH_STAGE_LAUNCH)},
+    PHOTON_KERNEL_NAMESPACE::countCells,
+    PHOTON_KERNEL_NAMESPACE::scatterPhotons,
+    PHOTON_KERNEL_NAMESPACE::sortKeys,
+    PHOTON_KERNEL_NAMESPACE::placeSorted,
     PHOTON_KERNEL_NAMESPACE::tracePrimaryRays,
 };
 

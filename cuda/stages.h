@@ -1,5 +1,5 @@
-// The CUDA kernels of one frame, one per stage (buildGrid in steps), behind a table of launch
-// functions. stages.cu is compiled twice: with FMA contraction (the fast build) and without
+// The CUDA kernels of one frame, behind a table of launch functions: one per stage of
+// shared/stages.h, found by its STAGE_* (the grid build's steps apart). stages.cu is compiled twice: with FMA contraction (the fast build) and without
 // (--fmad=false, the parity build, whose photon maps and hit points match the CPU backend bit for
 // bit).
 #pragma once
@@ -9,6 +9,7 @@
 #include <cstdint>
 
 #include "shared/bindings.h"
+#include "shared/stages.h"
 
 namespace photon {
 
@@ -21,22 +22,23 @@ struct LaunchConfig {
     bool pinnedReadback = true;       // images come back through pinned memory (else pageable)
 };
 
+// Launches a stage's kernels over the frame's buffers (b.params is the frame's parameters).
+using StageLaunch = void (*)(const Bindings& b, const LaunchConfig& c, cudaStream_t s);
+
 struct StageKernels {
-    // tracePhotons: paths [0, paths), appending photons to both maps.
-    void (*tracePhotons)(const Bindings& b, std::uint32_t paths, const LaunchConfig& c, cudaStream_t s);
-    // buildGrid, count: cell key of each stored photon of `map`, and photons per cell.
+    // By STAGE_*, each defined in stages.cu under its stage's name. The grid build's is null: the
+    // backend runs its steps (below) around CUB's scan and sort, whose storage it owns.
+    StageLaunch stage[STAGE_COUNT];
+    // Grid build, count: cell key of each stored photon of `map`, and photons per cell.
     void (*countCells)(const Bindings& b, std::uint32_t map, const LaunchConfig& c, cudaStream_t s);
-    // buildGrid, scatter: photons of `map` into cell order, from cellStart; leaves cellCounts at zero.
+    // Grid build, scatter: photons of `map` into cell order, from cellStart; leaves cellCounts at zero.
     void (*scatterPhotons)(const Bindings& b, std::uint32_t map, const LaunchConfig& c, cudaStream_t s);
-    // buildGrid, deterministic: the (cell, id) sort key and index of each of `count` stored photons
-    // of `map`; and, once the keys are sorted, the photons in that order.
+    // Grid build, deterministic: the (cell, id) sort key and index of each of `count` stored
+    // photons of `map`; and, once the keys are sorted, the photons in that order.
     void (*sortKeys)(const Bindings& b, std::uint32_t map, std::uint32_t count, std::uint64_t* keys,
                      std::uint32_t* indices, const LaunchConfig& c, cudaStream_t s);
     void (*placeSorted)(const Bindings& b, std::uint32_t map, std::uint32_t count, const std::uint32_t* order,
                         const LaunchConfig& c, cudaStream_t s);
-    void (*tracePixels)(const Bindings& b, const LaunchConfig& c, cudaStream_t s);
-    void (*gather)(const Bindings& b, const LaunchConfig& c, cudaStream_t s);
-    void (*accumulate)(const Bindings& b, const LaunchConfig& c, cudaStream_t s);
     // Not a stage: photon-bench's probe of the traversal alone (tracePrimaryRay), adding the
     // pixels whose ray hit something to *hits.
     void (*tracePrimaryRays)(const Bindings& b, std::uint32_t* hits, const LaunchConfig& c, cudaStream_t s);

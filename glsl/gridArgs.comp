@@ -1,6 +1,6 @@
 #version 460
-// Stage buildGrid, step 0: the indirect-dispatch arguments of the count and scatter passes of
-// each map, so that they run over the photons tracePhotons stored rather than the capacity.
+// STAGE_BUILD_GRID, step 0: the indirect-dispatch arguments of the count and scatter passes of
+// each map, so that they run over the photons the photon pass stored rather than the capacity.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/bindings.h"
 #include "shared/photon_map.h"

@@ -1,5 +1,5 @@
 #version 460
-// Stage buildGrid, step 1 (per map): the cell key of every stored photon, and the photons per cell.
+// STAGE_BUILD_GRID, step 1 (per map): the cell key of every stored photon, and the photons per cell.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/bindings.h"
 #include "shared/photon_map.h"

@@ -1,5 +1,5 @@
 #version 460
-// Stage buildGrid, step 2: one level of the exclusive prefix sum of the cell counts (Blelloch's
+// STAGE_BUILD_GRID, step 2: one level of the exclusive prefix sum of the cell counts (Blelloch's
 // work-efficient scan, with subgroups doing the in-register part). Each workgroup scans one block
 // of SCAN_ITEMS × workgroup-size cells: every invocation sums its SCAN_ITEMS cells, a subgroup
 // scan gives each invocation the sum of those before it in its subgroup, the first subgroup then

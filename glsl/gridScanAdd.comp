@@ -1,5 +1,5 @@
 #version 460
-// Stage buildGrid, step 2 (down the levels): adds to every cell of a block of gridScan.comp the
+// STAGE_BUILD_GRID, step 2 (down the levels): adds to every cell of a block of gridScan.comp the
 // scanned total of the blocks before it.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/bindings.h"

@@ -1,5 +1,5 @@
 #version 460
-// Stage buildGrid, step 3 (per map): every stored photon to a free place of its cell.
+// STAGE_BUILD_GRID, step 3 (per map): every stored photon to a free place of its cell.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/bindings.h"
 #include "shared/photon_map.h"

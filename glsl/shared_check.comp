@@ -22,6 +22,7 @@
 #include "../shared/rng.h"
 #include "../shared/sampling.h"
 #include "../shared/sppm.h"
+#include "../shared/stages.h"
 #include "../shared/surface.h"
 #include "../shared/texture.h"
 #include "../shared/tonemap.h"
@@ -37,7 +38,7 @@ void main() {
     uvec2 key = photonSortKey(MAP_CAUSTIC, i);
     PhotonPath path = startPhotonPath(i);
     Photon p;
-    uint store = photonBounce(path, p) + key.x + photonSortKeyBits(MAP_GLOBAL);
+    uint store = photonBounce(path, p) + key.x + photonSortKeyBits(params, MAP_GLOBAL);
     hitPoints[i] = tracePixel(i);
     frameRadiance[i] = vec4(gatherPixel(i) + gatherStage(i, ESTIMATOR_SPPM, GLOBAL_DIRECT), float(store));
     accumulation[i] = accumulatePixel(i);

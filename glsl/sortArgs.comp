@@ -1,5 +1,5 @@
 #version 460
-// Deterministic buildGrid, step 0 (per map): how many photons to sort, and the indirect-dispatch
+// Deterministic grid build (STAGE_BUILD_GRID), step 0 (per map): how many photons to sort, and the indirect-dispatch
 // groups of the per-element and per-tile passes.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/bindings.h"

@@ -1,5 +1,5 @@
 #version 460
-// Deterministic buildGrid, a radix pass's first step: how many keys of each tile have each digit.
+// Deterministic grid build (STAGE_BUILD_GRID), a radix pass's first step: how many keys of each tile have each digit.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/constants.h"
 #include "glsl/sort.h"

@@ -1,5 +1,5 @@
 #version 460
-// Deterministic buildGrid, step 1 (per map, after the count step): each stored photon's
+// Deterministic grid build (STAGE_BUILD_GRID), step 1 (per map, after the count step): each stored photon's
 // (cell key, photon id) sort key, and its index as the value.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/bindings.h"

@@ -1,5 +1,5 @@
 #version 460
-// Deterministic buildGrid, last step (per map): the photons in sorted order, which is cell order
+// Deterministic grid build (STAGE_BUILD_GRID), last step (per map): the photons in sorted order, which is cell order
 // with each cell's photons by id.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/bindings.h"

@@ -1,5 +1,5 @@
 #version 460
-// Deterministic buildGrid, a radix pass's second step, in one workgroup: the exclusive prefix sum
+// Deterministic grid build (STAGE_BUILD_GRID), a radix pass's second step, in one workgroup: the exclusive prefix sum
 // of the digit-major tile counts, which makes each entry the first place of its (digit, tile)
 // group: all keys of smaller digits, then those of the digit in earlier tiles, come before it.
 #extension GL_GOOGLE_include_directive : require

@@ -1,5 +1,5 @@
 #version 460
-// Deterministic buildGrid, a radix pass's third step: every key of a tile (with its value) to its
+// Deterministic grid build (STAGE_BUILD_GRID), a radix pass's third step: every key of a tile (with its value) to its
 // place, stably. The tile is moved in chunks of one key per invocation, in order; within a chunk
 // each key's rank among the earlier keys of its digit comes from subgroup scans of one-hot digit
 // counts (four 8-bit counters to a word, so that one uvec4 scan counts all 16 digits), and the

@@ -121,6 +121,16 @@ constexpr bool buffersNumberedInOrder() {
 }
 static_assert(buffersNumberedInOrder(), "PH_BUFFERS rows must be bindings 1, 2, 3, ... in order");
 
+constexpr bool sizeClassesKnown() {
+    for (const BufferInfo& info : kBuffers) {
+        if (info.size >= BUFFER_SIZE_CLASS_COUNT) {
+            return false;
+        }
+    }
+    return true;
+}
+static_assert(sizeClassesKnown(), "every PH_BUFFERS row's size is a BUFFER_PER_* class");
+
 inline const BufferInfo& bufferInfo(uint binding) { return kBuffers[binding - 1]; }
 
 // Points every member of `b` at pointers[binding] (pointers[0], the parameters, is not used).

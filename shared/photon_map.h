@@ -1,4 +1,4 @@
-// Stage buildGrid: the photons that tracePhotons appended, sorted by grid cell into the photon
+// STAGE_BUILD_GRID: the photons that the photon pass appended, sorted by grid cell into the photon
 // maps (a counting sort), the same way in every backend:
 //   count    one invocation per stored photon: its cell key, and photons per cell (an atomic add);
 //   scan     the backend's own exclusive prefix sum of the counts into cellStart;
@@ -18,7 +18,7 @@
 
 PH_NAMESPACE_BEGIN
 
-// Photons map `map` holds this frame: those tracePhotons counted, up to the map's capacity.
+// Photons map `map` holds this frame: those the photon pass counted, up to the map's capacity.
 PH_FN uint storedPhotons(BUF_PARAM uint map) {
     return min(BUF(counters)[COUNTER_STORED + map], BUF(params).grids[map].photonCapacity);
 }
@@ -57,8 +57,8 @@ PH_FN uvec2 photonSortKey(BUF_PARAM uint map, uint i) {
     return uvec2(id | (cell << idBits), cell >> (32u - idBits));
 }
 
-// Bits of the sort key of map `map`.
-PH_FN uint photonSortKeyBits(BUF_PARAM uint map) { return BUF(params).grids[map].keyBits + BUF(params).photonIdBits; }
+// Bits of the sort key of map `map` (the hosts sort that many low bits).
+PH_FN uint photonSortKeyBits(PH_IN(FrameParams) p, uint map) { return p.grids[map].keyBits + p.photonIdBits; }
 
 PH_NAMESPACE_END
 

@@ -137,7 +137,7 @@ PH_FN void appendPhoton(BUF_PARAM uint map, PH_IN(Photon) photon) {
     }
 }
 
-// Stage tracePhotons, for one path index in [0, globalPaths + causticPaths). A path's random
+// STAGE_TRACE_PHOTONS, for one path index in [0, globalPaths + causticPaths). A path's random
 // numbers and photon ids come from its index alone, so renderers that split a frame's paths
 // between them (FrameParams.pathFirst, pathCount) trace, together, the photons one would.
 PH_FN void tracePhotonPath(BUF_PARAM uint index) {

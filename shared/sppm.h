@@ -108,7 +108,7 @@ PH_FN vec3 sppmUpdate(BUF_PARAM uint map, PH_IN(Shading) s, vec3 weight, float f
 }
 
 // The gather stage under sppm: updates the pixel's statistics and returns this frame's own
-// estimate (frameRadiance; the accumulate stage makes the image from the statistics).
+// estimate (frameRadiance; STAGE_ACCUMULATE makes the image from the statistics).
 PH_FN vec3 gatherSppm(BUF_PARAM uint pixel) {
     HitPoint hp = BUF(hitPoints)[pixel];
     uint view = BUF(params).view;
@@ -155,7 +155,7 @@ PH_FN vec3 sppmRadiance(PH_IN(SppmPixel) state, uint frames, uint view) {
     return radiance;
 }
 
-// The accumulate stage for every estimator: the running mean of the frames, or under sppm (other
+// STAGE_ACCUMULATE for every estimator: the running mean of the frames, or under sppm (other
 // than the grid view, which shows each frame's cells) the image from the pixel's statistics.
 PH_FN vec4 accumulatePixel(BUF_PARAM uint pixel) {
     uint n = BUF(params).accumulated;

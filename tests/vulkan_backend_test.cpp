@@ -1,9 +1,9 @@
 // The Vulkan backend against the CPU reference, stage by stage, on the same scenes and settings,
 // with the validation layer on (any message it prints fails the test):
-//   tracePhotons + buildGrid: each map's cellStart identical, and each cell holding the same
+//   photon pass + grid build: each map's cellStart identical, and each cell holding the same
 //                             photons bit for bit (in any order: appends race on the GPU);
-//   tracePixels:              hit points bit-identical;
-//   gather, accumulate:       images within a relative RMSE (measured and printed), for every
+//   eye pass:                 hit points bit-identical;
+//   estimates, running mean:  images within a relative RMSE (measured and printed), for every
 //                             estimator, both grids and final gather.
 // Also: every scene in scenes/ renders finite, too-large requests are refused before any work,
 // and a photon map that overflows is grown without losing photons.
@@ -171,7 +171,7 @@ protected:
     static Backend* cpu_;
     static Backend* otherSeed_;  // the CPU with another seed: the noise to allow off lavapipe
     static double noise_;
-    static bool lavapipe_;  // the device is lavapipe: tracePhotons, buildGrid, tracePixels bit-exact
+    static bool lavapipe_;  // the device is lavapipe: photon maps and hit points bit-exact
 };
 
 Backend* VulkanBackendTest::vulkan_ = nullptr;
@@ -199,7 +199,7 @@ TEST_F(VulkanBackendTest, HitPointsBitIdentical) {
     }
 }
 
-// gather and accumulate for every estimator on both grids, over two frames (the progressive
+// The frame's estimates and the running mean for every estimator on both grids, over two frames (the progressive
 // radius shrinks in the second).
 TEST_F(VulkanBackendTest, EveryEstimatorAndGridAgreesWithCpu) {
     for (Estimator estimator : {Estimator::Cell, Estimator::Radius, Estimator::Knn, Estimator::Progressive, Estimator::Sppm}) {
@@ -211,8 +211,8 @@ TEST_F(VulkanBackendTest, EveryEstimatorAndGridAgreesWithCpu) {
             settings.k = 16;
             render(featureScene(), settings, 2);
             std::string what = std::string(toString(estimator)) + " " + toString(grid);
-            EXPECT_LE(compareImages(cpu_->readFrame(), vulkan_->readFrame(), what + " gather"), imageTolerance());
-            EXPECT_LE(compareImages(cpu_->image(), vulkan_->image(), what + " accumulate"), imageTolerance());
+            EXPECT_LE(compareImages(cpu_->readFrame(), vulkan_->readFrame(), what + " frame"), imageTolerance());
+            EXPECT_LE(compareImages(cpu_->image(), vulkan_->image(), what + " mean"), imageTolerance());
         }
     }
 }

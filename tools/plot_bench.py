@@ -15,7 +15,6 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-STAGES = ["tracePhotons", "buildGrid", "tracePixels", "gather", "accumulate"]
 COLOURS = ["#4e79a7", "#f28e2b", "#59a14f", "#e15759", "#b07aa1"]
 
 
@@ -25,6 +24,14 @@ def rows_of(paths):
         with open(path) as f:
             rows += json.load(f)["rows"]
     return rows
+
+
+def stage_names(paths):
+    """The stages in the order a frame runs them, as photon-bench lists them (its "stages"; files
+    from before that list give only the keys of stages_ms)."""
+    with open(paths.split(",")[0]) as f:
+        j = json.load(f)
+    return j.get("stages") or list(j["rows"][0]["stages_ms"])
 
 
 def cpu_vs_gpu(rows, out):
@@ -51,11 +58,11 @@ def cpu_vs_gpu(rows, out):
     fig.savefig(os.path.join(out, "cpu_vs_gpu.png"))
 
 
-def stages(rows, out):
+def stages(rows, names, out):
     fig, ax = plt.subplots(figsize=(7, 1.4 + 0.45 * len(rows)), dpi=110)
     labels = [f'{r["backend"]} {r["width"]}x{r["height"]} {r["variant"]}'.strip() for r in rows]
     left = [0.0] * len(rows)
-    for stage, colour in zip(STAGES, COLOURS):
+    for stage, colour in zip(names, COLOURS * (1 + len(names) // len(COLOURS))):
         values = [r["stages_ms"][stage] for r in rows]
         ax.barh(labels, values, left=left, color=colour, label=stage)
         left = [a + b for a, b in zip(left, values)]
@@ -78,7 +85,7 @@ def main():
     parser.add_argument("--out", default="docs")
     args = parser.parse_args()
     cpu_vs_gpu(rows_of(args.series), args.out)
-    stages(rows_of(args.stages), args.out)
+    stages(rows_of(args.stages), stage_names(args.stages), args.out)
 
 
 if __name__ == "__main__":

@@ -2,21 +2,13 @@
 
 #include <algorithm>
 
+#include "core/median.h"
 #include "vulkan/check.h"
 
 namespace photon::viewer {
 namespace {
 
 constexpr std::uint32_t kMarks = 4;
-
-double medianOf(std::vector<double> v) {
-    if (v.empty()) {
-        return 0.0;
-    }
-    std::sort(v.begin(), v.end());
-    std::size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 }  // namespace
 
@@ -80,15 +72,13 @@ FrameRecord FrameLog::median(std::size_t skip) const {
         for (std::size_t i = first; i < records_.size(); ++i) {
             v.push_back(get(records_[i]));
         }
-        return medianOf(v);
+        return photon::median(v);
     };
     FrameRecord m;
     m.loopMs = column([](const FrameRecord& r) { return r.loopMs; });
-    m.stages.tracePhotons = column([](const FrameRecord& r) { return r.stages.tracePhotons; });
-    m.stages.buildGrid = column([](const FrameRecord& r) { return r.stages.buildGrid; });
-    m.stages.tracePixels = column([](const FrameRecord& r) { return r.stages.tracePixels; });
-    m.stages.gather = column([](const FrameRecord& r) { return r.stages.gather; });
-    m.stages.accumulate = column([](const FrameRecord& r) { return r.stages.accumulate; });
+    for (const StageInfo& s : kStages) {
+        m.stages[s.id] = column([&](const FrameRecord& r) { return r.stages[s.id]; });
+    }
     m.passes.dots = column([](const FrameRecord& r) { return r.passes.dots; });
     m.passes.display = column([](const FrameRecord& r) { return r.passes.display; });
     m.passes.hud = column([](const FrameRecord& r) { return r.passes.hud; });

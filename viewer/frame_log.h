@@ -44,7 +44,7 @@ struct FrameRecord {
     double loopMs = 0.0;             // wall-clock time since the previous frame started
     StageTimes stages;               // the backend's stages
     PassTimes passes;                // ours
-    double photonsPerSecond = 0.0;   // emitted paths / tracePhotons time
+    double photonsPerSecond = 0.0;   // emitted paths / time of the photon pass
 };
 
 class FrameLog {

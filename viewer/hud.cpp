@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <utility>
+#include <vector>
 
 #include <imgui.h>
 
@@ -60,17 +62,18 @@ void statsSection(const HudInfo& info) {
     ImGui::Text("%s", info.device.c_str());
     ImGui::Text("%.1f fps (%.2f ms)   %s", info.fps, info.frame.loopMs, info.presentMode);
     ImGui::Text("frames accumulated %u", info.accumulated);
-    std::uint32_t paths = info.stats.emitted[MAP_GLOBAL] + info.stats.emitted[MAP_CAUSTIC];
-    ImGui::Text("%.1f M photons/s (%u paths a frame)", info.frame.photonsPerSecond * 1e-6, paths);
-    ImGui::Text("stored %u global, %u caustic", std::min(info.stats.stored[MAP_GLOBAL], info.stats.capacity[MAP_GLOBAL]),
-                std::min(info.stats.stored[MAP_CAUSTIC], info.stats.capacity[MAP_CAUSTIC]));
+    ImGui::Text("%.1f M photons/s (%llu paths a frame)", info.frame.photonsPerSecond * 1e-6,
+                static_cast<unsigned long long>(info.stats.emittedPaths()));
+    ImGui::Text("stored %s", info.stats.storedList(true).c_str());
     if (ImGui::BeginTable("stages", 2, ImGuiTableFlags_SizingFixedFit)) {
         const StageTimes& s = info.frame.stages;
         const PassTimes& p = info.frame.passes;
-        const std::pair<const char*, double> rows[] = {
-            {"tracePhotons", s.tracePhotons}, {"buildGrid", s.buildGrid}, {"tracePixels", s.tracePixels},
-            {"gather", s.gather},             {"accumulate", s.accumulate}, {"photon dots", p.dots},
-            {"display", p.display},           {"HUD", p.hud},             {"GPU total", s.total() + p.total()}};
+        std::vector<std::pair<const char*, double>> rows;
+        for (const StageInfo& stage : kStages) {
+            rows.push_back({stage.name, s[stage.id]});
+        }
+        rows.insert(rows.end(),
+                    {{"photon dots", p.dots}, {"display", p.display}, {"HUD", p.hud}, {"GPU total", s.total() + p.total()}});
         for (const auto& [name, ms] : rows) {
             ImGui::TableNextRow();
             ImGui::TableSetColumnIndex(0);

@@ -202,14 +202,14 @@ void Viewer::printSummary() const {
     std::size_t skip = log_.size() > 2 ? std::max<std::size_t>(1, log_.size() / 10) : 0;
     FrameRecord m = log_.median(skip);
     const RenderSettings& s = backend_->settings();
-    std::fprintf(stderr,
-                 "photon-view: %s, %ux%u %s, %zu frames (median of the last %zu): loop %.2f ms (%.1f fps); GPU ms: "
-                 "tracePhotons %.2f, buildGrid %.2f, tracePixels %.2f, gather %.2f, accumulate %.2f, dots %.2f, "
-                 "display %.2f, HUD %.2f; %.1f M photons/s\n",
+    std::fprintf(stderr, "photon-view: %s, %ux%u %s, %zu frames (median of the last %zu): loop %.2f ms (%.1f fps); GPU ms: ",
                  backend_->deviceName().c_str(), s.width, s.height, swapchain_ ? "windowed" : "offscreen", log_.size(),
-                 log_.size() - skip, m.loopMs, m.loopMs > 0.0 ? 1000.0 / m.loopMs : 0.0, m.stages.tracePhotons,
-                 m.stages.buildGrid, m.stages.tracePixels, m.stages.gather, m.stages.accumulate, m.passes.dots,
-                 m.passes.display, m.passes.hud, m.photonsPerSecond * 1e-6);
+                 log_.size() - skip, m.loopMs, m.loopMs > 0.0 ? 1000.0 / m.loopMs : 0.0);
+    for (const StageInfo& stage : kStages) {
+        std::fprintf(stderr, "%s %.2f, ", stage.name, m.stages[stage.id]);
+    }
+    std::fprintf(stderr, "dots %.2f, display %.2f, HUD %.2f; %.1f M photons/s\n", m.passes.dots, m.passes.display,
+                 m.passes.hud, m.photonsPerSecond * 1e-6);
     if (options_.statsPath.empty()) {
         return;
     }
@@ -223,11 +223,13 @@ void Viewer::printSummary() const {
     j["frames"] = log_.size();
     j["median_of"] = log_.size() - skip;
     j["loop_ms"] = m.loopMs;
-    j["gpu_ms"] = {{"tracePhotons", m.stages.tracePhotons}, {"buildGrid", m.stages.buildGrid},
-                   {"tracePixels", m.stages.tracePixels},   {"gather", m.stages.gather},
-                   {"accumulate", m.stages.accumulate},     {"dots", m.passes.dots},
-                   {"display", m.passes.display},           {"hud", m.passes.hud},
-                   {"total", m.stages.total() + m.passes.total()}};
+    for (const StageInfo& stage : kStages) {
+        j["gpu_ms"][stage.name] = m.stages[stage.id];
+    }
+    j["gpu_ms"]["dots"] = m.passes.dots;
+    j["gpu_ms"]["display"] = m.passes.display;
+    j["gpu_ms"]["hud"] = m.passes.hud;
+    j["gpu_ms"]["total"] = m.stages.total() + m.passes.total();
     j["photons_per_second"] = m.photonsPerSecond;
     writeOutputFile(options_.statsPath, j.dump(2) + "\n", "stats");
 }

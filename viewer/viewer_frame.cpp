@@ -148,8 +148,9 @@ void Viewer::finishFrame() {
     lastFinish_ = now;
     record.stages = stats.ms;
     record.passes = passTimer_->read();
-    double paths = double(stats.emitted[MAP_GLOBAL]) + double(stats.emitted[MAP_CAUSTIC]);
-    record.photonsPerSecond = stats.ms.tracePhotons > 0.0 ? paths / (stats.ms.tracePhotons * 1e-3) : 0.0;
+    double paths = double(stats.emittedPaths());
+    double photonMs = stats.ms[STAGE_TRACE_PHOTONS];
+    record.photonsPerSecond = photonMs > 0.0 ? paths / (photonMs * 1e-3) : 0.0;
     log_.add(record);
 
     if (!frame_.screenshot.empty()) {

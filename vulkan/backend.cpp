@@ -3,7 +3,6 @@
 #include "backend.h"
 
 #include <algorithm>
-#include <cstring>
 
 #include "check.h"
 #include "core/error.h"
@@ -58,7 +57,7 @@ void VulkanBackend::adjustPlan(BufferPlan& plan, const PhotonBudget& budget) {
     plan.elements[BINDING_CELL_START] = planScan(budget, pipelines_.scanGroupSize).cellStartEntries;
     plan.scratchBytes = 0;
     if (settings().deterministic) {
-        std::uint32_t capacity = std::max(budget.capacity[MAP_GLOBAL], budget.capacity[MAP_CAUSTIC]);
+        std::uint32_t capacity = budget.largestCapacity();
         VkDeviceSize largest = PhotonSort::largestBufferFor(capacity);
         VkDeviceSize limit = context_->properties.limits.maxStorageBufferRange;
         if (largest > limit) {
@@ -72,19 +71,10 @@ void VulkanBackend::adjustPlan(BufferPlan& plan, const PhotonBudget& budget) {
 
 // Scene arrays to their bindings; an empty array still gets a buffer of one zeroed element.
 void VulkanBackend::uploadScene(const Scene& scene, const BufferPlan& plan) {
-    for (const BufferInfo& info : kBuffers) {
-        if (info.size != BUFFER_PER_SCENE) {
-            continue;
-        }
-        VkDeviceSize bytes = plan.bytes(info.binding);
-        ensureBuffer(info.binding, bytes);
-        HostArray array = sceneArray(scene, info.binding);
-        std::vector<unsigned char> data(bytes, 0);
-        if (array.count > 0) {
-            std::memcpy(data.data(), array.data, array.count * info.elementBytes);
-        }
-        transfers_.upload(buffers_[info.binding], data.data(), bytes);
-    }
+    forEachSceneBuffer(scene, plan, [&](std::uint32_t binding, const void* data, std::uint64_t bytes) {
+        ensureBuffer(binding, bytes);
+        transfers_.upload(buffers_[binding], data, bytes);
+    });
     context_->checkValidation("uploading the scene");
 }
 
@@ -96,7 +86,7 @@ void VulkanBackend::allocate(const BufferPlan& plan, const PhotonBudget& budget,
         if (!sort_) {
             sort_ = std::make_unique<PhotonSort>(*context_, pipelines_);
         }
-        sort_->reserve(std::max(budget.capacity[MAP_GLOBAL], budget.capacity[MAP_CAUSTIC]));
+        sort_->reserve(budget.largestCapacity());
     }
     ensureBuffer(BINDING_PARAMS, plan.bytes(BINDING_PARAMS));
     for (const BufferInfo& info : kBuffers) {
@@ -107,13 +97,19 @@ void VulkanBackend::allocate(const BufferPlan& plan, const PhotonBudget& budget,
     context_->checkValidation("allocating the frame buffers");
 }
 
-FrameResult VulkanBackend::runFrame(const FrameParams& params) {
+void VulkanBackend::beginStages(const FrameParams& params) {
     VkCommandBuffer cmd = frame_.cmd;
     VK_CHECK(vkResetCommandBuffer(cmd, 0));
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
-    recordFrame(cmd, params);
+    recordFrameStart(cmd, params);
+}
+
+void VulkanBackend::runStage(std::uint32_t stage, const FrameParams& params) { recordStage(frame_.cmd, stage, params); }
+
+FrameResult VulkanBackend::endStages() {
+    VkCommandBuffer cmd = frame_.cmd;
     recordStatsReadback(cmd);
     VK_CHECK(vkEndCommandBuffer(cmd));
 
@@ -149,11 +145,9 @@ FrameResult VulkanBackend::frameResult() {
         std::uint64_t mask = context_->timestampValidBits >= 64 ? ~0ull : (1ull << context_->timestampValidBits) - 1;
         double msPerTick = double(context_->properties.limits.timestampPeriod) * 1e-6;
         auto ms = [&](std::uint32_t i) { return double((ticks[i + 1] - ticks[i]) & mask) * msPerTick; };
-        stats.ms.tracePhotons = ms(0);
-        stats.ms.buildGrid = ms(1);
-        stats.ms.tracePixels = ms(2);
-        stats.ms.gather = ms(3);
-        stats.ms.accumulate = ms(4);
+        for (std::uint32_t stage = 0; stage < STAGE_COUNT; ++stage) {
+            stats.ms[stage] = ms(stage);
+        }
     }
     context_->checkValidation("a frame");
     return stats;

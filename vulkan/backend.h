@@ -1,4 +1,4 @@
-// The Vulkan backend: the five stages as compute shaders (glsl/) over the shared core, one
+// The Vulkan backend: the stages as compute shaders (glsl/) over the shared core, one
 // command buffer and one submission per frame. Headless programs reach it through
 // createVulkanBackend(); a windowed viewer builds its own Context (with surface and swapchain
 // extensions), constructs the backend on it, records frames into its own command buffers with
@@ -21,8 +21,8 @@
 
 namespace photon::vk {
 
-// Timestamps around the stages: before tracePhotons, then after each of the five.
-constexpr std::uint32_t kTimestampCount = 6;
+// Timestamps around the stages: before the first, then after each.
+constexpr std::uint32_t kTimestampCount = STAGE_COUNT + 1;
 
 class VulkanBackend final : public Backend {
 public:
@@ -35,14 +35,15 @@ public:
     MemoryLimits memoryLimits() override;
 
     // Records a whole frame into `cmd`: its parameters, the stages and the barriers between them,
-    // and timestamps. Call prepare() first. The frame starts with a barrier against everything
+    // and timestamps, through the same per-stage recording as the backend's own frames. Call
+    // prepare() first. The frame starts with a barrier against everything
     // earlier on the queue and ends with accumulation written by a compute shader: the caller
     // orders its own reads of it (COMPUTE_SHADER / SHADER_WRITE before them).
     void recordFrame(VkCommandBuffer cmd, const FrameParams& params);
 
     // After recordFrame() in the caller's command buffer: copies the frame's counters for the
     // host. Once that submission has completed, frameResult() reads them and the stage timestamps
-    // (what runFrame() returns). One frame at a time: there is one copy and one query pool.
+    // (what endStages() returns). One frame at a time: there is one copy and one query pool.
     void recordStatsReadback(VkCommandBuffer cmd);
     FrameResult frameResult();
 
@@ -59,13 +60,24 @@ protected:
     void adjustPlan(BufferPlan& plan, const PhotonBudget& budget) override;
     void uploadScene(const Scene& scene, const BufferPlan& plan) override;
     void allocate(const BufferPlan& plan, const PhotonBudget& budget, std::uint32_t width, std::uint32_t height) override;
-    FrameResult runFrame(const FrameParams& params) override;
+    // beginStages() starts the frame's command buffer, runStage() records a stage into it,
+    // endStages() submits it and waits.
+    void beginStages(const FrameParams& params) override;
+    void runStage(std::uint32_t stage, const FrameParams& params) override;
+    FrameResult endStages() override;
     void readBuffer(std::uint32_t binding, std::uint64_t offset, std::uint64_t bytes, void* data) override;
 
 private:
     // (Re)creates the buffer of `binding` if its size changed and points the descriptor at it.
     void ensureBuffer(std::uint32_t binding, VkDeviceSize bytes);
-    void recordBuildGrid(VkCommandBuffer cmd, const FrameParams& params);
+    // The parameters and cleared counters, before the first stage (record_frame.cpp).
+    void recordFrameStart(VkCommandBuffer cmd, const FrameParams& params);
+    // One stage with its barrier and timestamp; and each stage's commands, named as the stage.
+    void recordStage(VkCommandBuffer cmd, std::uint32_t stage, const FrameParams& params);
+#define PH_VULKAN_STAGE_FUNCTION(NAME, id, name, label) void name(VkCommandBuffer cmd, const FrameParams& params);
+    PH_STAGES(PH_VULKAN_STAGE_FUNCTION)
+    void dispatchPixels(VkCommandBuffer cmd, VkPipeline pipeline, const FrameParams& params);
+    void timestamp(VkCommandBuffer cmd, std::uint32_t index);
 
     // Device, one-off copies, pipelines.
     std::shared_ptr<Context> context_;  // shared with a viewer, if any; outlives everything below
@@ -77,7 +89,7 @@ private:
     ScanPlan scan_;              // the levels of the cell-count scan, in cellStart
     std::unique_ptr<PhotonSort> sort_;  // the deterministic build's, made on first use
 
-    // The frame runFrame() submits.
+    // The frame beginStages() records and endStages() submits.
     struct Frame {
         VkCommandPool pool = VK_NULL_HANDLE;      // owns cmd
         VkCommandBuffer cmd = VK_NULL_HANDLE;     // re-recorded every frame

@@ -7,6 +7,7 @@
 #include "glsl/sort.h"
 #include "objects.h"
 #include "shared/bindings.h"
+#include "shared/photon_map.h"
 
 namespace photon::vk {
 namespace spirv {
@@ -128,7 +129,7 @@ void PhotonSort::record(VkCommandBuffer cmd, const FrameParams& params, std::uin
     computeBarrier(cmd);
     run(kArgs, {map, 0, 0, 0}, kOneGroup);
     run(kKeys, {map, 0, 0, 0}, SORT_STATE_ELEMENT_ARGS);
-    std::uint32_t bits = grid.keyBits + params.photonIdBits;
+    std::uint32_t bits = photonSortKeyBits(params, map);
     std::uint32_t source = 0;
     for (std::uint32_t shift = 0; shift < bits; shift += SORT_DIGIT_BITS) {
         std::uint32_t target = capacity_ - source;  // the other half

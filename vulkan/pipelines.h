@@ -13,15 +13,15 @@
 namespace photon::vk {
 
 enum Shader : std::uint32_t {
-    kTracePhotons,  // stage tracePhotons
-    kGridArgs,      // stage buildGrid: group counts of the count and scatter passes
+    kTracePhotons,  // STAGE_TRACE_PHOTONS
+    kGridArgs,      // STAGE_BUILD_GRID: group counts of the count and scatter passes
     kGridCount,     //   cell keys and photons per cell
     kGridScan,      //   one level of the exclusive scan of the counts
     kGridScanAdd,   //   adds the scanned block totals back down a level
     kGridScatter,   //   photons into cell order
-    kTracePixels,   // stage tracePixels
-    kGather,        // stage gather
-    kAccumulate,    // stage accumulate
+    kTracePixels,   // STAGE_TRACE_PIXELS
+    kGather,        // STAGE_GATHER
+    kAccumulate,    // STAGE_ACCUMULATE
     kShaderCount
 };
 

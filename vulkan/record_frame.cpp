@@ -1,22 +1,26 @@
-// One frame as commands: the parameters, the five stages in order with a barrier between each
-// stage and the next, and a timestamp after each.
+// One frame as commands: the parameters, then the stages of shared/stages.h in order, each with
+// the barrier that orders its writes before the next stage's reads, and a timestamp after it.
+#include <stdexcept>
+#include <string>
+
 #include "backend.h"
 #include "glsl/dispatch.h"
 
 namespace photon::vk {
 
 void VulkanBackend::recordFrame(VkCommandBuffer cmd, const FrameParams& params) {
+    recordFrameStart(cmd, params);
+    for (const StageInfo& stage : kStages) {
+        recordStage(cmd, stage.id, params);
+    }
+}
+
+void VulkanBackend::recordFrameStart(VkCommandBuffer cmd, const FrameParams& params) {
     Pipelines& p = pipelines_;
-    bool timed = context_->timestampValidBits > 0;
-    auto timestamp = [&](std::uint32_t index) {
-        if (timed) {
-            vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, frame_.timestamps, index);
-        }
-    };
-    if (timed) {
+    if (context_->timestampValidBits > 0) {
         vkCmdResetQueryPool(cmd, frame_.timestamps, 0, kTimestampCount);
     }
-    timestamp(0);
+    timestamp(cmd, 0);
 
     // The previous frame (and any readback) is done with the parameters and counters before this
     // frame rewrites them.
@@ -33,44 +37,64 @@ void VulkanBackend::recordFrame(VkCommandBuffer cmd, const FrameParams& params) 
     memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                   VK_ACCESS_UNIFORM_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layout, 0, 1, &p.set, 0, nullptr);
+}
 
-    // tracePhotons: one invocation per path of both passes.
-    dispatch(cmd, p, kTracePhotons, params.pathCount, GROUP_SIZE);
+// The stage's commands, by its function below (named as the stage), then timestamp stage + 1.
+void VulkanBackend::recordStage(VkCommandBuffer cmd, std::uint32_t stage, const FrameParams& params) {
+#define PH_VULKAN_STAGE(NAME, id, name, label) &VulkanBackend::name,
+    static constexpr void (VulkanBackend::*kRecord[])(VkCommandBuffer, const FrameParams&) = {PH_STAGES(PH_VULKAN_STAGE)};
+    if (stage >= STAGE_COUNT) {
+        throw std::logic_error("Vulkan: unknown stage " + std::to_string(stage));
+    }
+    (this->*kRecord[stage])(cmd, params);
+    timestamp(cmd, stage + 1);
+}
+
+void VulkanBackend::timestamp(VkCommandBuffer cmd, std::uint32_t index) {
+    if (context_->timestampValidBits > 0) {
+        vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, frame_.timestamps, index);
+    }
+}
+
+// One invocation per pixel, in tiles.
+void VulkanBackend::dispatchPixels(VkCommandBuffer cmd, VkPipeline pipeline, const FrameParams& params) {
+    std::uint32_t tilesX = (params.width + PIXEL_TILE_X - 1) / PIXEL_TILE_X;
+    std::uint32_t tilesY = (params.height + PIXEL_TILE_Y - 1) / PIXEL_TILE_Y;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+    vkCmdDispatch(cmd, tilesX, tilesY, 1);
+}
+
+// One invocation per path of both passes.
+void VulkanBackend::tracePhotons(VkCommandBuffer cmd, const FrameParams& params) {
+    dispatch(cmd, pipelines_, kTracePhotons, params.pathCount, GROUP_SIZE);
     // The photons and their counters are written before the grid build reads them.
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
-    timestamp(1);
+}
 
-    recordBuildGrid(cmd, params);
-    timestamp(2);
-
-    // tracePixels: one invocation per pixel, in tiles.
-    std::uint32_t tilesX = (params.width + PIXEL_TILE_X - 1) / PIXEL_TILE_X;
-    std::uint32_t tilesY = (params.height + PIXEL_TILE_Y - 1) / PIXEL_TILE_Y;
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline[kTracePixels]);
-    vkCmdDispatch(cmd, tilesX, tilesY, 1);
+void VulkanBackend::tracePixels(VkCommandBuffer cmd, const FrameParams& params) {
+    dispatchPixels(cmd, pipelines_.pipeline[kTracePixels], params);
     // The hit points are written before gather reads them.
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
-    timestamp(3);
+}
 
-    // gather: one invocation per pixel, with the pipeline of the frame's estimator and mode.
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_.gather(params.estimator, params.globalMode));
-    vkCmdDispatch(cmd, tilesX, tilesY, 1);
+// With the pipeline of the frame's estimator and mode.
+void VulkanBackend::gather(VkCommandBuffer cmd, const FrameParams& params) {
+    dispatchPixels(cmd, pipelines_.gather(params.estimator, params.globalMode), params);
     // This frame's radiance is written before accumulate reads it.
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
-    timestamp(4);
-
-    // accumulate: one invocation per pixel.
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline[kAccumulate]);
-    vkCmdDispatch(cmd, tilesX, tilesY, 1);
-    timestamp(5);
 }
 
-// buildGrid: a counting sort of each map's photons by cell. The count and scatter passes run over
-// the photons actually stored, through group counts that gridArgs writes from the counters.
-void VulkanBackend::recordBuildGrid(VkCommandBuffer cmd, const FrameParams& params) {
+// The last stage: the caller orders its own reads of the accumulation (recordFrame()).
+void VulkanBackend::accumulate(VkCommandBuffer cmd, const FrameParams& params) {
+    dispatchPixels(cmd, pipelines_.pipeline[kAccumulate], params);
+}
+
+// A counting sort of each map's photons by cell. The count and scatter passes run over the photons
+// actually stored, through group counts that gridArgs writes from the counters.
+void VulkanBackend::buildGrid(VkCommandBuffer cmd, const FrameParams& params) {
     const Pipelines& p = pipelines_;
     VkBuffer counters = buffers_[BINDING_COUNTERS].handle();
     auto dispatchPerMap = [&](Shader shader) {

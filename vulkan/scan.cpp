@@ -34,7 +34,10 @@ ScanPlan planScan(const PhotonBudget& budget, std::uint32_t groupSize) {
 }
 
 void recordScan(VkCommandBuffer cmd, const Pipelines& pipelines, const ScanPlan& plan) {
-    std::size_t depth = std::max(plan.levels[MAP_GLOBAL].size(), plan.levels[MAP_CAUSTIC].size());
+    std::size_t depth = 0;
+    for (const std::vector<ScanLevel>& levels : plan.levels) {
+        depth = std::max(depth, levels.size());
+    }
 
     // Up: scan level j in blocks, each block's total into level j + 1.
     for (std::size_t j = 0; j + 1 < depth; ++j) {

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Runs on the GPU machine (see ../shared/device/README.md) from the project root, with the
+# Runs on the GPU machine (its notes are outside this repository, in shared/device/README.md beside
+# the checkouts) from the project root, with the
 # binaries of `cmake --preset device && cmake --build --preset device` carried in build-device/bin
 # and .devlibs/ prepared. Writes logs and JSON under $OUT.
 #   tools/device/session.sh tests sanitize sanitize-new frames meshes converge pictures bundle-all
@@ -74,7 +75,7 @@ for step in "$@"; do
       done ;;
     sanitize-new)
       # The kernels of the mesh, sppm and primary-ray work: the BVH traversal, textures, emissive
-      # triangles, directional light, the sppm gather and accumulate.
+      # triangles, directional light, the sppm estimates and their running mean.
       for tool in memcheck racecheck; do
         for run in "scenes/bunny.json --estimator sppm --frames 3" "scenes/textured.glb --estimator sppm --frames 3" \
                    "scenes/smallpt.json --estimator sppm --frames 3 --deterministic"; do

@@ -1,0 +1,101 @@
+// What core decides for every backend about a frame's stages and buffers: the stage list's names
+// (the report keys documents and scripts read), the order a frame runs them in, and the buffer
+// helpers the backends allocate and upload through.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/backend.h"
+#include "core/buffers.h"
+#include "core/median.h"
+#include "core/scene_loader.h"
+#include "cpu/cpu_backend.h"
+
+namespace photon {
+namespace {
+
+TEST(StageList, NamesAreTheReportKeys) {
+    std::vector<std::string> names;
+    for (const StageInfo& s : kStages) {
+        names.push_back(s.name);
+    }
+    EXPECT_EQ(names, (std::vector<std::string>{"tracePhotons", "buildGrid", "tracePixels", "gather", "accumulate"}));
+}
+
+TEST(StageList, EveryStageIsTimed) {
+    std::unique_ptr<Backend> cpu = createCpuBackend();
+    cpu->setScene(defaultScene());
+    RenderSettings s;
+    s.width = 32;
+    s.height = 24;
+    s.photons = 2000;
+    cpu->setSettings(s);
+    cpu->renderFrame();
+    const StageTimes& t = cpu->lastFrameStats().ms;
+    double sum = 0.0;
+    for (const StageInfo& stage : kStages) {
+        EXPECT_GE(t[stage.id], 0.0) << stage.name;
+        sum += t[stage.id];
+    }
+    EXPECT_EQ(t.total(), sum);
+}
+
+TEST(Median, OddEvenEmpty) {
+    EXPECT_EQ(median({3.0, 1.0, 2.0}), 2.0);
+    EXPECT_EQ(median({4.0, 1.0, 2.0, 3.0}), 2.5);
+    EXPECT_EQ(median({}), 0.0);
+}
+
+// Every changed buffer is freed before any is allocated; unchanged ones and the scene's are left.
+TEST(BufferHelpers, ResizeFreesAllChangedBeforeAllocating) {
+    BufferPlan plan;
+    plan.elements[BINDING_PHOTONS] = 10;
+    plan.elements[BINDING_FRAME] = 4;
+    plan.elements[BINDING_ACCUMULATION] = 4;
+    std::map<std::uint32_t, std::uint64_t> held = {{BINDING_PHOTONS, 0}, {BINDING_FRAME, plan.bytes(BINDING_FRAME)},
+                                                   {BINDING_ACCUMULATION, 1}};
+    std::vector<std::pair<std::uint32_t, std::uint64_t>> calls;
+    resizeChangedBuffers(
+        plan, [&](std::uint32_t b, std::uint64_t bytes) { return held[b] == bytes; },
+        [&](std::uint32_t b, std::uint64_t bytes) { calls.push_back({b, bytes}); });
+    bool allocating = false;
+    for (const auto& [binding, bytes] : calls) {
+        EXPECT_NE(binding, BINDING_FRAME);
+        EXPECT_NE(bufferInfo(binding).size, BUFFER_PER_SCENE);
+        EXPECT_TRUE(bytes > 0 || !allocating) << "a buffer was freed after another was allocated";
+        allocating = allocating || bytes > 0;
+    }
+    EXPECT_EQ(calls.size(), 4u);  // photons and accumulation, freed then allocated
+}
+
+// A scene array goes up as it is; an empty one as one zeroed element.
+TEST(BufferHelpers, SceneBuffersArePaddedToThePlan) {
+    Scene scene = defaultScene();
+    scene.targets.clear();
+    PhotonBudget budget = planPhotons(scene, RenderSettings{});
+    BufferPlan plan = planBuffers(scene, budget, 8, 8);
+    std::uint32_t seen = 0;
+    forEachSceneBuffer(scene, plan, [&](std::uint32_t binding, const void* data, std::uint64_t bytes) {
+        seen += 1;
+        EXPECT_EQ(bufferInfo(binding).size, BUFFER_PER_SCENE);
+        EXPECT_EQ(bytes, plan.bytes(binding));
+        HostArray array = sceneArray(scene, binding);
+        if (array.count == 0) {
+            std::vector<unsigned char> zeros(bytes, 0);
+            EXPECT_EQ(std::memcmp(data, zeros.data(), bytes), 0) << bufferInfo(binding).name;
+        } else {
+            EXPECT_EQ(std::memcmp(data, array.data, bytes), 0) << bufferInfo(binding).name;
+        }
+    });
+    std::uint32_t sceneRows = 0;
+    for (const BufferInfo& info : kBuffers) {
+        sceneRows += info.size == BUFFER_PER_SCENE ? 1u : 0u;
+    }
+    EXPECT_EQ(seen, sceneRows);
+}
+
+}  // namespace
+}  // namespace photon
