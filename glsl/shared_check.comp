@@ -8,6 +8,7 @@
 #include "../shared/intersect.h"
 #include "../shared/material.h"
 #include "../shared/bsdf.h"
+#include "../shared/light_types.h"
 #include "../shared/lights.h"
 #include "../shared/photon_trace.h"
 #include "../shared/grid.h"

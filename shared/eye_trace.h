@@ -131,7 +131,7 @@ PH_FN HitPoint tracePixel(BUF_PARAM uint pixel) {
     for (uint depth = 0u; depth < BUF(params).maxEyeDepth; ++depth) {
         Hit hit;
         if (!traceClosest(BUF_ARG ray, hit)) {
-            hp.direct += weight * BUF(params).scene.background;
+            hp.direct += weight * infiniteRadiance(BUF_ARG ray.direction);
             break;
         }
         SurfacePoint sp = surfaceAt(BUF_ARG hit);
