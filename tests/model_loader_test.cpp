@@ -541,6 +541,14 @@ TEST(GltfLoader, BadFilesNameTheJsonPointerAndTheReason) {
         g.parts["meshes"] = R"([{"primitives": [{"attributes": {"POSITION": 7}}]}])";
         EXPECT_EQ(errorOf("b.gltf", g.text()), "b.gltf: /meshes/0/primitives/0: accessor 7 does not exist");
     }
+    for (const char* ior : {"0", "0.5"}) {
+        Gltf g;
+        g.parts["extensionsUsed"] = R"(["KHR_materials_ior"])";
+        g.parts["materials"] = std::string(R"([{"extensions": {"KHR_materials_ior": {"ior": )") + ior + "}}}]";
+        g.parts["meshes"] = R"([{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": 0}]}])";
+        std::string reason = ior[1] ? "must be from 1 to 10" : "0 (a reflectance of 1) is not supported: use 1 to 10";
+        EXPECT_EQ(errorOf("b.gltf", g.text()), "b.gltf: /materials/0/extensions/KHR_materials_ior/ior: " + reason);
+    }
     {
         Gltf g;
         g.parts["meshes"] = R"([{"primitives": [{"attributes": {"POSITION": 0}, "material": 3}]}])";
