@@ -32,6 +32,15 @@ struct Cone {
     float x;
 };
 
+// No photon: what a light that emits none (or no light) gives.
+PH_FN PhotonEmission noEmission() {
+    PhotonEmission e;
+    e.origin = vec3(0.0f);
+    e.direction = vec3(0.0f, 0.0f, 1.0f);
+    e.power = vec3(0.0f);
+    return e;
+}
+
 PH_FN uint pickLight(BUF_PARAM float u, PH_OUT(float) probability) {
     uint last = BUF(params).scene.lightCount - 1u;
     for (uint i = 0u; i < last; ++i) {
@@ -140,7 +149,8 @@ PH_FN vec3 directionalOrigin(PH_IN(Light) light, vec2 q) {
     return boundingCenter(light) + localToWorld(vec3(q.x, q.y, -1.001f), directionalDirection(light)) * boundingRadius(light);
 }
 
-// An area light's photon: a point by area, a direction cosine-weighted about its normal.
+// An area light's photon: a point by area ((u3, u4); u0 picks an emissive triangle), a direction
+// cosine-weighted about its normal (u1, u2).
 PH_FN PhotonEmission emitAreaPhoton(BUF_PARAM PH_IN(Light) light, float u0, float u1, float u2, float u3,
                                     float u4) {
     vec3 n;
@@ -163,10 +173,7 @@ PH_FN PhotonEmission emitPhoton(BUF_PARAM PH_IN(Light) light, PH_INOUT(Rng) rng)
     float u2 = rngNext(rng);
     float u3 = rngNext(rng);
     float u4 = rngNext(rng);
-    PhotonEmission e;
-    e.origin = vec3(0.0f);
-    e.direction = vec3(0.0f, 0.0f, 1.0f);
-    e.power = vec3(0.0f);
+    PhotonEmission e = noEmission();
     switch (light.type) {
         case LIGHT_POINT:
             e.origin = pointPosition(light);
@@ -315,13 +322,10 @@ PH_FN PhotonEmission emitDirectionalCausticPhoton(BUF_PARAM PH_IN(Light) light, 
     return e;
 }
 
-// Photon of the caustic pass: its direction is drawn from the mixture of cones towards the
-// specular objects, and its power is intensity / mixture density, which keeps it unbiased.
-// Five draws.
-PH_FN PhotonEmission emitCausticPhoton(BUF_PARAM PH_IN(Light) light, PH_INOUT(Rng) rng) {
-    if (light.type == LIGHT_DIRECTIONAL) {
-        return emitDirectionalCausticPhoton(BUF_ARG light, rng);
-    }
+// Photon of the caustic pass from a point or area light: its direction is drawn from the mixture
+// of cones towards the specular objects, and its power is intensity / mixture density, which
+// keeps it unbiased. Five draws, six for emissive triangles.
+PH_FN PhotonEmission emitConeCausticPhoton(BUF_PARAM PH_IN(Light) light, PH_INOUT(Rng) rng) {
     float u1 = rngNext(rng);
     float u2 = rngNext(rng);
     float u3 = rngNext(rng);
@@ -388,6 +392,23 @@ PH_FN PhotonEmission emitCausticPhoton(BUF_PARAM PH_IN(Light) light, PH_INOUT(Rn
     }
     e.power = intensity / pdf;
     return e;
+}
+
+// Photon of the caustic pass, aimed at the specular objects.
+PH_FN PhotonEmission emitCausticPhoton(BUF_PARAM PH_IN(Light) light, PH_INOUT(Rng) rng) {
+    switch (light.type) {
+        case LIGHT_POINT:
+        case LIGHT_SPOT:
+        case LIGHT_SPHERE:
+        case LIGHT_QUAD:
+        case LIGHT_TRIANGLES:
+            return emitConeCausticPhoton(BUF_ARG light, rng);
+        case LIGHT_DIRECTIONAL:
+            return emitDirectionalCausticPhoton(BUF_ARG light, rng);
+        case LIGHT_BACKGROUND:
+            break;  // emits no photons: it is not among the lights photons are emitted from
+    }
+    return noEmission();
 }
 
 // Direct-light sample towards `light` from x. Two draws, three for emissive triangles.
