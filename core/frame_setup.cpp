@@ -64,16 +64,13 @@ FrameParams makeFrameParams(const Scene& scene, const CameraDesc& camera, const 
     p.camera = makeCamera(camera, settings.width, settings.height);
 
     SceneInfo& info = p.scene;
-    info.sphereCount = static_cast<std::uint32_t>(scene.spheres.size());
     info.planeCount = static_cast<std::uint32_t>(scene.planes.size());
-    info.quadCount = static_cast<std::uint32_t>(scene.quads.size());
-    info.triangleCount = static_cast<std::uint32_t>(scene.triangles.size());
     info.lightCount = static_cast<std::uint32_t>(scene.lights.size());
     info.targetCount = budget.splitCaustics ? static_cast<std::uint32_t>(scene.targets.size()) : 0u;
     bool linear = scene.primitiveRefs.size() <= LINEAR_PRIMITIVES_MAX;
     info.bvhNodeCount = linear ? 0u : static_cast<std::uint32_t>(scene.bvhNodes.size());
     info.linearCount = linear ? static_cast<std::uint32_t>(scene.primitiveRefs.size()) : 0u;
-    info.background = scene.background;
+    info.infiniteLight = 0u;  // the scene's one, its background (Scene::finalize)
 
     glm::vec3 extent = scene.boundsMax - scene.boundsMin;
     float cube = std::max({extent.x, extent.y, extent.z});

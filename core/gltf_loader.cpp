@@ -464,6 +464,11 @@ struct Loader {
         };
         m.transmission = float(clamp01(number(extension("KHR_materials_transmission"), "transmissionFactor", 0.0)));
         double ior = number(extension("KHR_materials_ior"), "ior", 1.5);
+        if (ior == 0.0) {
+            // The ratified schema allows exactly 0 besides ≥ 1: a reflectance of 1 (f0 from ior),
+            // which no refracting material has.
+            fail(here + "/extensions/KHR_materials_ior/ior", "0 (a reflectance of 1) is not supported: use 1 to 10");
+        }
         if (!(ior >= 1.0 && ior <= 10.0)) {
             fail(here + "/extensions/KHR_materials_ior/ior", "must be from 1 to 10");
         }

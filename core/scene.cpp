@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "parallel.h"
+#include "shared/light_types.h"
 #include "shared/material.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -347,7 +348,7 @@ void Scene::addSpotLight(glm::vec3 position, glm::vec3 direction, glm::vec3 powe
 
 void Scene::addSphereLight(glm::vec3 center, float radius, glm::vec3 power) {
     Light l = emptyLight(LIGHT_SPHERE, center, power);
-    l.radius = radius;
+    l.extent = radius;
     l.area = 4.0f * PI * radius * radius;
     lights.push_back(l);
     std::uint32_t m = addMaterial("light" + std::to_string(lights.size() - 1), makeEmitter(power * (INV_PI / l.area)));
@@ -357,20 +358,92 @@ void Scene::addSphereLight(glm::vec3 center, float radius, glm::vec3 power) {
 void Scene::addDirectionalLight(glm::vec3 direction, glm::vec3 irradiance) {
     Light l = emptyLight(LIGHT_DIRECTIONAL, glm::vec3(0.0f), irradiance);
     l.axis = glm::normalize(direction);
-    l.edgeU = irradiance;
+    l.vectorU = irradiance;
     lights.push_back(l);
 }
 
 void Scene::addQuadLight(glm::vec3 corner, glm::vec3 edgeU, glm::vec3 edgeV, glm::vec3 power) {
     Light l = emptyLight(LIGHT_QUAD, corner, power);
-    l.edgeU = edgeU;
-    l.edgeV = edgeV;
+    l.vectorU = edgeU;
+    l.vectorV = edgeV;
     glm::vec3 n = glm::cross(edgeU, edgeV);
     l.area = glm::length(n);
     l.axis = n / l.area;
     lights.push_back(l);
     std::uint32_t m = addMaterial("light" + std::to_string(lights.size() - 1), makeEmitter(power * (INV_PI / l.area)));
     addQuad(corner, edgeU, edgeV, m);
+}
+
+const char* lightTypeName(std::uint32_t type) {
+    static_assert(LIGHT_TYPE_COUNT == 7u, "a name for every LIGHT_*");
+    switch (type) {
+        case LIGHT_POINT: return "point";
+        case LIGHT_SPOT: return "spot";
+        case LIGHT_SPHERE: return "sphere";
+        case LIGHT_QUAD: return "quad";
+        case LIGHT_TRIANGLES: return "emissive triangles";
+        case LIGHT_DIRECTIONAL: return "directional";
+        case LIGHT_BACKGROUND: return "background";
+    }
+    throw std::logic_error("unknown light type " + std::to_string(type));
+}
+
+// A directional light's handle: a point on its side of the scene, twice the bounding radius out.
+glm::vec3 Scene::lightHandle(std::uint32_t light) const {
+    const Light& l = lights.at(light);
+    if (l.type == LIGHT_DIRECTIONAL) {
+        return boundingCenter(l) - 2.0f * boundingRadius(l) * directionalDirection(l);
+    }
+    return l.position;
+}
+
+void Scene::moveLight(std::uint32_t light, glm::vec3 delta) {
+    Light& l = lights.at(light);
+    // The emitter surface that addSphereLight/addQuadLight made carries the material named after it.
+    std::uint32_t emitter = findMaterial("light" + std::to_string(light));
+    bool ownSurface = emitter != NONE && materials[emitter].type == MATERIAL_EMITTER;
+    switch (l.type) {
+        case LIGHT_POINT:
+        case LIGHT_SPOT:
+            l.position += delta;
+            break;
+        case LIGHT_SPHERE:
+            l.position += delta;
+            for (Sphere& sphere : spheres) {
+                if (ownSurface && sphere.material == emitter) {
+                    sphere.center += delta;
+                }
+            }
+            break;
+        case LIGHT_QUAD:
+            l.position += delta;
+            for (Quad& quad : quads) {
+                if (ownSurface && quad.material == emitter) {
+                    quad.corner += delta;
+                }
+            }
+            break;
+        case LIGHT_TRIANGLES:
+            // The triangles finalize() gathered into this light (it makes the light again).
+            for (Triangle& t : triangles) {
+                const Material& m = materials[t.material];
+                if (m.type != MATERIAL_EMITTER && !isBlack(m.emission)) {
+                    t.v0 += delta;
+                    t.v1 += delta;
+                    t.v2 += delta;
+                }
+            }
+            l.position += delta;
+            break;
+        case LIGHT_DIRECTIONAL:
+            // The light turns to shine from its moved handle towards the scene's centre.
+            if (delta != glm::vec3(0.0f)) {
+                l.axis = glm::normalize(boundingCenter(l) - (lightHandle(light) + delta));
+            }
+            break;
+        case LIGHT_BACKGROUND:
+            break;  // everywhere: nothing to move (and never in `lights`: finalize refuses it)
+    }
 }
 
 // The sphere bounding targets [first, last).
@@ -457,6 +530,17 @@ void Scene::finalize() {
                       m.type != MATERIAL_GLASS;
         t.flags = (tested ? TRIANGLE_ALPHA_TESTED : 0u) | (culled ? TRIANGLE_BACK_CULLED : 0u);
     }
+    // Every light is of a type the shared code knows: its switches have a case for each type and
+    // nothing for any other. The infinite one is the scene's `background`, not one of its lights.
+    for (std::size_t i = 0; i < lights.size(); ++i) {
+        std::uint32_t type = lights[i].type;
+        if (type >= LIGHT_TYPE_COUNT) {
+            throw std::logic_error("light " + std::to_string(i) + " has unknown type " + std::to_string(type));
+        }
+        if ((lightFlags(type) & LIGHT_FLAG_INFINITE) != 0u) {
+            throw std::logic_error("light " + std::to_string(i) + " is an infinite light: a scene has one, its background");
+        }
+    }
     // Bounds of everything finite (lights' own positions included).
     glm::vec3 lo(FLOAT_MAX);
     glm::vec3 hi(-FLOAT_MAX);
@@ -473,8 +557,21 @@ void Scene::finalize() {
         hi = glm::max(hi, glm::max(t.v0, glm::max(t.v1, t.v2)));
     }
     for (const Light& l : lights) {
-        if (l.type != LIGHT_DIRECTIONAL && l.type != LIGHT_TRIANGLES) {
-            grow(lo, hi, l.position, l.radius);
+        switch (l.type) {
+            case LIGHT_POINT:
+            case LIGHT_SPOT:
+                grow(lo, hi, pointPosition(l), 0.0f);
+                break;
+            case LIGHT_SPHERE:
+                grow(lo, hi, sphereCenter(l), sphereRadius(l));
+                break;
+            case LIGHT_QUAD:
+                grow(lo, hi, quadCorner(l), 0.0f);  // its surface, a quad, is in the bounds already
+                break;
+            case LIGHT_TRIANGLES:    // its triangles are
+            case LIGHT_DIRECTIONAL:  // at infinity, and sized to the bounds below
+            case LIGHT_BACKGROUND:   // (refused above)
+                break;
         }
     }
     if (lo.x > hi.x) {
@@ -489,9 +586,9 @@ void Scene::finalize() {
     float radius = std::max(0.5f * glm::length(hi - lo), 1e-6f);
     for (Light& l : lights) {
         if (l.type == LIGHT_DIRECTIONAL) {
-            l.position = centre;
-            l.radius = radius;
-            l.power = l.edgeU * (PI * radius * radius);
+            l.position = centre;  // boundingCenter
+            l.extent = radius;    // boundingRadius
+            l.power = directionalIrradiance(l) * (PI * radius * radius);
         }
     }
 
@@ -550,6 +647,12 @@ void Scene::finalize() {
     if (!lights.empty()) {
         lights.back().pickCdf = 1.0f;
     }
+
+    // What rays that leave the scene see: its background, a light of its own outside `lights`
+    // (shared/lights.h, infiniteRadiance, says why).
+    Light sky = emptyLight(LIGHT_BACKGROUND, centre, glm::vec3(0.0f));
+    sky.vectorU = background;  // backgroundRadiance
+    infiniteLights = {sky};
 
     // Caustic targets: a bounding sphere for each bounded caster, a mesh's casters as one.
     auto caster = [&](std::uint32_t m) { return surfaceIs(materials[m], SURFACE_CAUSTIC_CASTER); };

@@ -56,7 +56,7 @@ struct Scene {
     std::vector<std::string> materialNames;
     std::vector<TriangleObject> objects;
     CameraDesc camera;
-    glm::vec3 background{0.0f};
+    glm::vec3 background{0.0f};  // radiance of rays that leave the scene (finalize() makes it a light)
     glm::vec3 boundsMin{0.0f};  // by finalize()
     glm::vec3 boundsMax{0.0f};
     RenderSettings render;
@@ -93,7 +93,15 @@ struct Scene {
     // facing it (the sun). finalize() sizes it to the scene's bounds.
     void addDirectionalLight(glm::vec3 direction, glm::vec3 irradiance);
 
-    // Bounds, the emissive triangles' light, light pick probabilities, caustic targets and the BVH.
+    // Where light `light` is for someone moving it (a directional light: a point on its side of
+    // the scene, out of the bounds), and moving it by delta with what belongs to it: the surface
+    // of a sphere or quad light, the triangles of the emissive triangles' light; a directional
+    // light turns to shine from its moved point. Call finalize() after.
+    glm::vec3 lightHandle(std::uint32_t light) const;
+    void moveLight(std::uint32_t light, glm::vec3 delta);
+
+    // Bounds, the emissive triangles' light, light pick probabilities, the background's light,
+    // caustic targets and the BVH.
     // Call after the last add*() (again after any change).
     void finalize();
 
@@ -103,6 +111,9 @@ struct Scene {
     // can a photon path be a caustic one.
     bool makesCausticPaths() const;
 };
+
+// "point", "spot", ..., for people: the name of a LIGHT_* type.
+const char* lightTypeName(std::uint32_t type);
 
 // A scene array by binding (any row of size SCENE): its elements, or nullptr for other rows.
 struct HostArray {

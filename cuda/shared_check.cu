@@ -8,6 +8,7 @@
 #include "../shared/grid.h"
 #include "../shared/intersect.h"
 #include "../shared/layout.h"
+#include "../shared/light_types.h"
 #include "../shared/lights.h"
 #include "../shared/material.h"
 #include "../shared/math.h"

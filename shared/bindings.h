@@ -39,7 +39,8 @@
     X(HIT_POINTS, 20u, HitPoint, hitPoints, HITS, PIXEL)                       \
     X(FRAME, 21u, vec4, frameRadiance, RW, PIXEL)                              \
     X(ACCUMULATION, 22u, vec4, accumulation, RW, PIXEL)                        \
-    X(SPPM_PIXELS, 23u, SppmPixel, sppmPixels, RW, SPPM_PIXEL)
+    X(SPPM_PIXELS, 23u, SppmPixel, sppmPixels, RW, SPPM_PIXEL)              \
+    X(INFINITE_LIGHTS, 24u, Light, infiniteLights, RO, SCENE)
 
 PH_NAMESPACE_BEGIN
 

@@ -33,11 +33,27 @@ PH_FN vec3 evalBsdf(PH_IN(Material) m, vec3 wo, vec3 wi, vec3 n) {
     return f;
 }
 
-// Probability of picking the GGX lobe of a glossy material.
-PH_FN float glossySpecularProbability(PH_IN(Material) m) {
-    float d = maxComponent(m.albedo);
-    float s = maxComponent(m.specular);
-    return (d + s) > 0.0f ? s / (d + s) : 0.0f;
+// The mirror coat of a reflective material (nf: the shading normal on wo's side): its mirror
+// direction, weighted by 1 / the probability of choosing it.
+PH_FN BsdfSample sampleMirrorCoat(PH_IN(Material) m, vec3 wo, vec3 nf) {
+    BsdfSample bs;
+    bs.direction = reflectAbout(wo, nf);
+    bs.weight = m.specular / specularLobeProbability(m);
+    bs.lobe = LOBE_SPECULAR;
+    return bs;
+}
+
+// A sample on the wrong side of the geometric surface (n, and side: which side of it wo is on) is
+// absorbed, so that no light leaks through where the shading and geometric normals differ: a
+// reflection must stay on wo's side, a transmission must cross.
+PH_FN BsdfSample absorbAcrossSurface(PH_IN(BsdfSample) proposed, vec3 n, float side, bool transmits) {
+    BsdfSample bs = proposed;
+    float across = dot(bs.direction, n) * side;  // > 0: the side wo came from
+    if (bs.lobe != LOBE_NONE && (transmits ? across >= 0.0f : across <= 0.0f)) {
+        bs.lobe = LOBE_NONE;
+        bs.weight = vec3(0.0f);
+    }
+    return bs;
 }
 
 // Sample wi given wo. n is the geometric normal as the primitive defines it (outward for
@@ -61,7 +77,7 @@ PH_FN BsdfSample sampleBsdfLobes(PH_IN(Material) m, vec3 wo, vec3 n, vec3 ns, ui
         bs.weight = m.albedo;
         bs.lobe = LOBE_DIFFUSE;
     } else if (m.type == MATERIAL_GLOSSY) {
-        float pSpecular = glossySpecularProbability(m);
+        float pSpecular = specularLobeProbability(m);
         if (u0 < pSpecular) {
             vec3 h = localToWorld(sampleGgxNormal(u1, u2, m.roughness), nf);
             vec3 wi = reflectAbout(wo, h);
@@ -85,11 +101,9 @@ PH_FN BsdfSample sampleBsdfLobes(PH_IN(Material) m, vec3 wo, vec3 n, vec3 ns, ui
         bs.weight = m.specular;
         bs.lobe = LOBE_SPECULAR;
     } else if (m.type == MATERIAL_REFLECTIVE) {
-        float pMirror = mirrorCoatProbability(m);
+        float pMirror = specularLobeProbability(m);
         if (u0 < pMirror) {
-            bs.direction = reflectAbout(wo, nf);
-            bs.weight = m.specular / pMirror;
-            bs.lobe = LOBE_SPECULAR;
+            bs = sampleMirrorCoat(m, wo, nf);
         } else {
             bs.direction = localToWorld(sampleCosineHemisphere(u1, u2), nf);
             bs.weight = m.albedo / (1.0f - pMirror);
@@ -114,12 +128,7 @@ PH_FN BsdfSample sampleBsdfLobes(PH_IN(Material) m, vec3 wo, vec3 n, vec3 ns, ui
     } else if (m.type == MATERIAL_PBR) {
         bs = samplePbr(m, wo, nf, side > 0.0f, pbrSubset, u0, u1, u2, transmits);
     }
-    float across = dot(bs.direction, n) * side;  // > 0: the side wo came from
-    if (bs.lobe != LOBE_NONE && (transmits ? across >= 0.0f : across <= 0.0f)) {
-        bs.lobe = LOBE_NONE;
-        bs.weight = vec3(0.0f);
-    }
-    return bs;
+    return absorbAcrossSurface(bs, n, side, transmits);
 }
 
 // Sample wi from everything the material does (the stored lobes alone for a storedPart()).

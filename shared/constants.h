@@ -37,13 +37,16 @@ PH_CONST uint MATERIAL_FLAG_SINGLE_SIDED = 16u;  // seen from its front only (gl
 PH_CONST uint TRIANGLE_ALPHA_TESTED = 1u;      // its material's coverage decides whether a ray hits
 PH_CONST uint TRIANGLE_BACK_CULLED = 2u;       // rays pass through its back (a single-sided opaque material)
 
-// Light types (Light::type).
-PH_CONST uint LIGHT_POINT = 0u;
-PH_CONST uint LIGHT_SPOT = 1u;
-PH_CONST uint LIGHT_SPHERE = 2u;
-PH_CONST uint LIGHT_QUAD = 3u;
+// Light types (Light::type). What each one is, and where its parameters live in a Light, is
+// answered in one place: lightFlags() and the accessors of light_types.h.
+PH_CONST uint LIGHT_POINT = 0u;        // a point, isotropic or hemispherical (Light::profile)
+PH_CONST uint LIGHT_SPOT = 1u;         // a point emitting into a cone, with a smooth falloff
+PH_CONST uint LIGHT_SPHERE = 2u;       // a Lambertian sphere
+PH_CONST uint LIGHT_QUAD = 3u;         // a one-sided Lambertian parallelogram
 PH_CONST uint LIGHT_TRIANGLES = 4u;    // the emissive triangles of the scene, sampled by power
 PH_CONST uint LIGHT_DIRECTIONAL = 5u;  // parallel light from infinity (the sun), over the scene's bounds
+PH_CONST uint LIGHT_BACKGROUND = 6u;   // uniform radiance from every direction that leaves the scene
+PH_CONST uint LIGHT_TYPE_COUNT = 7u;
 
 // Emission profile of a point light (Light::profile).
 PH_CONST uint EMIT_ISOTROPIC = 0u;   // I = Φ/4π in every direction

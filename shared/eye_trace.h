@@ -95,6 +95,22 @@ PH_FN HitPoint emptyHitPoint() {
     return hp;
 }
 
+// The hit point where an eye path ends: at x (hit.position) on material `material`, with the
+// path's weight, the shading and geometric normals and the direction back along the path (all
+// facing wo), and the textured values the gather stage cannot look up again.
+PH_FN void endPathAt(PH_INOUT(HitPoint) hp, vec3 x, uint material, vec3 weight, vec3 ns, vec3 ng, vec3 wo,
+                     PH_IN(Material) m) {
+    hp.position = x;
+    hp.material = material;
+    hp.weight = weight;
+    hp.normal = octEncode(ns);
+    hp.geometricNormal = octEncode(ng);
+    hp.outgoing = octEncode(wo);
+    hp.albedo = m.albedo;
+    hp.metallic = m.metallic;
+    hp.roughness = m.roughness;
+}
+
 // A probe of the traversal alone, for photon-bench (Aila and Laine's "primary rays"): the ray
 // through the pixel's centre and its nearest hit, without shading. 1 if it hit anything.
 PH_FN uint tracePrimaryRay(BUF_PARAM uint pixel) {
@@ -115,7 +131,7 @@ PH_FN HitPoint tracePixel(BUF_PARAM uint pixel) {
     for (uint depth = 0u; depth < BUF(params).maxEyeDepth; ++depth) {
         Hit hit;
         if (!traceClosest(BUF_ARG ray, hit)) {
-            hp.direct += weight * BUF(params).scene.background;
+            hp.direct += weight * infiniteRadiance(BUF_ARG ray.direction);
             break;
         }
         SurfacePoint sp = surfaceAt(BUF_ARG hit);
@@ -146,15 +162,7 @@ PH_FN HitPoint tracePixel(BUF_PARAM uint pixel) {
             }
             float pTraced = stores ? pbrTracedProbability(m, dot(wo, ns)) : 1.0f;
             if (stores && rngNext(rng) >= pTraced) {
-                hp.position = hit.position;
-                hp.material = hit.material;
-                hp.weight = weight / (1.0f - pTraced);
-                hp.normal = octEncode(ns);
-                hp.geometricNormal = octEncode(ng);
-                hp.outgoing = octEncode(wo);
-                hp.albedo = m.albedo;
-                hp.metallic = m.metallic;
-                hp.roughness = m.roughness;
+                endPathAt(hp, hit.position, hit.material, weight / (1.0f - pTraced), ns, ng, wo, m);
                 break;
             }
             BsdfSample bs = sampleBsdfLobes(m, wo, sp.geometricNormal, sp.shadingNormal, PBR_LOBES_TRACED, rng);
@@ -170,29 +178,18 @@ PH_FN HitPoint tracePixel(BUF_PARAM uint pixel) {
         // A mirror coat continues the path, or the surface's base ends it here.
         bool mirrorCoat = false;
         if ((surface & SURFACE_SPECULAR_COAT) != 0u) {
-            float pMirror = mirrorCoatProbability(m);
+            float pMirror = specularLobeProbability(m);
             mirrorCoat = rngNext(rng) < pMirror;
             weight *= mirrorCoat ? vec3(1.0f) : vec3(1.0f / (1.0f - pMirror));
         }
         if ((surface & SURFACE_ENDS_EYE_PATHS) != 0u && !mirrorCoat) {
-            hp.position = hit.position;
-            hp.material = hit.material;
-            hp.weight = weight;
-            hp.normal = octEncode(ns);
-            hp.geometricNormal = octEncode(ng);
-            hp.outgoing = octEncode(wo);
-            hp.albedo = m.albedo;
-            hp.metallic = m.metallic;
-            hp.roughness = m.roughness;
+            endPathAt(hp, hit.position, hit.material, weight, ns, ng, wo, m);
             hp.direct += weight * directLight(BUF_ARG hit.position, ns, ng, wo, storedPart(m), rng);
             break;
         }
         BsdfSample bs;
         if (mirrorCoat) {
-            float pMirror = mirrorCoatProbability(m);
-            bs.direction = reflectAbout(wo, ns);
-            bs.weight = m.specular / pMirror;
-            bs.lobe = dot(bs.direction, ng) > 0.0f ? LOBE_SPECULAR : LOBE_NONE;
+            bs = absorbAcrossSurface(sampleMirrorCoat(m, wo, ns), sp.geometricNormal, side, false);
         } else {
             bs = sampleBsdf(m, wo, sp.geometricNormal, sp.shadingNormal, rng);
         }

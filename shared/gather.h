@@ -36,6 +36,9 @@ PH_FN vec3 finalGather(BUF_PARAM PH_IN(Shading) s, uint estimator, PH_INOUT(Rng)
         for (uint depth = 0u; depth < BUF(params).maxEyeDepth; ++depth) {
             Hit hit;
             if (!traceClosest(BUF_ARG ray, hit)) {
+                // It met the infinite light (lights.h, infiniteRadiance). Like a ray that ends on
+                // a light it adds nothing: an infinite light is direct light where it is sampled
+                // as one, and a uniform background lights nothing at all.
                 break;
             }
             SurfacePoint sp = surfaceAt(BUF_ARG hit);

@@ -178,6 +178,9 @@ PH_CONST uint QUERY_ANY = 1u;      // whether there is any (shadow rays): the fi
 
 // A primitive reference of primitiveRefs: kind in the top 2 bits, index below.
 PH_CONST uint PRIMITIVE_INDEX_BITS = 30u;
+#ifdef __cplusplus
+static_assert(PRIM_KIND_COUNT <= (1u << (32u - PRIMITIVE_INDEX_BITS)), "every PRIM_* fits a reference's kind bits");
+#endif
 PH_FN uint primitiveKind(uint ref) { return ref >> PRIMITIVE_INDEX_BITS; }
 PH_FN uint primitiveIndex(uint ref) { return ref & ((1u << PRIMITIVE_INDEX_BITS) - 1u); }
 
@@ -188,23 +191,28 @@ PH_FN float intersectPrimitive(BUF_PARAM uint ref, PH_IN(Ray) ray, PH_IN(RayFram
     uint index = primitiveIndex(ref);
     b1 = 0.0f;
     b2 = 0.0f;
-    if (kind == PRIM_SPHERE) {
-        return intersectSphere(ray, BUF(spheres)[index].center, BUF(spheres)[index].radius, tMax);
-    }
-    if (kind == PRIM_QUAD) {
-        return intersectQuad(ray, BUF(quads)[index], tMax);
-    }
-    Triangle tri = BUF(triangles)[index];
-    float t = intersectTriangle(frame, tri, tMax, b1, b2);
-    if (t < tMax && tri.flags != 0u) {
-        if ((tri.flags & TRIANGLE_BACK_CULLED) != 0u && dot(ray.direction, cross(tri.v1 - tri.v0, tri.v2 - tri.v0)) > 0.0f) {
-            return tMax;  // its back, which a single-sided surface does not have
+    switch (kind) {
+        case PRIM_SPHERE:
+            return intersectSphere(ray, BUF(spheres)[index].center, BUF(spheres)[index].radius, tMax);
+        case PRIM_QUAD:
+            return intersectQuad(ray, BUF(quads)[index], tMax);
+        case PRIM_TRIANGLE: {
+            Triangle tri = BUF(triangles)[index];
+            float t = intersectTriangle(frame, tri, tMax, b1, b2);
+            if (t < tMax && tri.flags != 0u) {
+                if ((tri.flags & TRIANGLE_BACK_CULLED) != 0u && dot(ray.direction, cross(tri.v1 - tri.v0, tri.v2 - tri.v0)) > 0.0f) {
+                    return tMax;  // its back, which a single-sided surface does not have
+                }
+                if ((tri.flags & TRIANGLE_ALPHA_TESTED) != 0u && !coverageHolds(BUF_ARG tri, b1, b2, ray.direction)) {
+                    return tMax;  // cut out (alpha mask) or, this time, seen through (alpha blend)
+                }
+            }
+            return t;
         }
-        if ((tri.flags & TRIANGLE_ALPHA_TESTED) != 0u && !coverageHolds(BUF_ARG tri, b1, b2, ray.direction)) {
-            return tMax;  // cut out (alpha mask) or, this time, seen through (alpha blend)
-        }
+        case PRIM_PLANE:
+            break;  // unbounded: traceRay tests planes apart, the host never references one (bvh.cpp)
     }
-    return t;
+    return tMax;
 }
 
 // The result of a scene query.
@@ -319,20 +327,29 @@ PH_FN TraceResult traceRay(BUF_PARAM PH_IN(Ray) ray, uint query) {
 
 // The surface of primitive (kind, index) at a point on it: geometric normal and material.
 PH_FN void primitiveSurface(BUF_PARAM uint kind, uint index, vec3 p, PH_OUT(vec3) normal, PH_OUT(uint) material) {
-    if (kind == PRIM_SPHERE) {
-        Sphere s = BUF(spheres)[index];
-        normal = (p - s.center) * (1.0f / s.radius);
-        material = s.material;
-    } else if (kind == PRIM_PLANE) {
-        normal = BUF(planes)[index].normal;
-        material = BUF(planes)[index].material;
-    } else if (kind == PRIM_QUAD) {
-        normal = unitVector(BUF(quads)[index].w);
-        material = BUF(quads)[index].material;
-    } else {
-        Triangle tri = BUF(triangles)[index];
-        normal = unitVector(cross(tri.v1 - tri.v0, tri.v2 - tri.v0));
-        material = tri.material;
+    normal = vec3(0.0f, 0.0f, 1.0f);
+    material = NONE;
+    switch (kind) {
+        case PRIM_SPHERE: {
+            Sphere s = BUF(spheres)[index];
+            normal = (p - s.center) * (1.0f / s.radius);
+            material = s.material;
+            break;
+        }
+        case PRIM_PLANE:
+            normal = BUF(planes)[index].normal;
+            material = BUF(planes)[index].material;
+            break;
+        case PRIM_QUAD:
+            normal = unitVector(BUF(quads)[index].w);
+            material = BUF(quads)[index].material;
+            break;
+        case PRIM_TRIANGLE: {
+            Triangle tri = BUF(triangles)[index];
+            normal = unitVector(cross(tri.v1 - tri.v0, tri.v2 - tri.v0));
+            material = tri.material;
+            break;
+        }
     }
 }
 

@@ -92,20 +92,21 @@ struct PH_ALIGN16 EmissiveTriangle {
     uint triangle; float cdf; float probability; float area;  // cdf: Σ probability up to and with this one
 };
 
+// A light of any type (LIGHT_*). Fields that mean different things for different types are read
+// through the accessors of light_types.h, which say what each one is for each type.
 struct PH_ALIGN16 Light {
-    vec3 position; uint type;      // point and spot: position; sphere: centre; quad: corner
-    vec3 power; float radius;      // emitted flux Φ per channel [W]; sphere radius
-    vec3 axis; float spotOuter;    // spot and hemisphere axis, quad normal (unit); spot: 1 - cos of the
+    vec3 position; uint type;      // a point of the light (pointPosition, sphereCenter, quadCorner, ...)
+    vec3 power; float extent;      // emitted flux Φ per channel [W]; a length (sphereRadius, boundingRadius)
+    vec3 axis; float spotOuter;    // a unit direction (spotAxis, quadNormal, ...); spot: 1 - cos of the
                                    // cone's half-angle (kept as 1 - cos: exact for narrow beams)
-    vec3 edgeU; float spotInner;   // quad edge u; spot: 1 - cos of the angle where the falloff starts
-    vec3 edgeV; float area;        // quad edge v; emitting area (sphere, quad)
+    vec3 vectorU; float spotInner; // a vector (quadEdgeU, directionalIrradiance, backgroundRadiance);
+                                   // spot: 1 - cos of the angle where the falloff starts
+    vec3 vectorV; float area;      // a vector (quadEdgeV); emitting area (sphere, quad)
     float pickCdf; float pickProbability; uint profile; float falloffMean;
     // pickCdf: Σ pickProbability of this and earlier lights; profile: EMIT_*;
     // falloffMean: mean of the spot falloff over its cone, normalises the intensity
     uint emitterFirst; uint emitterCount; float pad0; float pad1;
-    // LIGHT_TRIANGLES: its emissive triangles, emissiveTriangles[emitterFirst ..]. Directional:
-    // position and radius the sphere bounding the scene, axis the direction of travel, edgeU the
-    // irradiance E, power the flux E·πR² through the sphere's disk
+    // LIGHT_TRIANGLES: its emissive triangles, emissiveTriangles[emitterFirst ..]
 };
 
 // A bounding sphere of a specular object: the caustic pass emits photons towards these.
@@ -123,11 +124,13 @@ struct PH_ALIGN16 Camera {
 };
 
 struct PH_ALIGN16 SceneInfo {
-    uint sphereCount; uint planeCount; uint quadCount; uint triangleCount;
-    uint lightCount; uint targetCount; uint bvhNodeCount; uint linearCount;
+    uint planeCount; uint lightCount; uint targetCount; uint infiniteLight;
+    // lightCount: lights[0 .. lightCount) emit photons and are sampled for direct light;
+    // infiniteLight: what rays that leave the scene see, infiniteLights[infiniteLight]
+    uint bvhNodeCount; uint linearCount; uint pad0; uint pad1;
     // bvhNodeCount 0: no hierarchy is traversed; linearCount: bounded primitives tested one by one
     // instead (a scene too small for a hierarchy to pay), primitiveRefs[0 .. linearCount)
-    vec3 background; float pad1;       // radiance of rays that leave the scene
+    uint pad2; uint pad3; uint pad4; uint pad5;  // (FrameParams keeps its layout)
 };
 
 struct PH_ALIGN16 GridParams {
@@ -218,17 +221,17 @@ PH_SIZE(BvhNode, 64); PH_OFFSET(BvhNode, childA, 12); PH_OFFSET(BvhNode, upperA,
 PH_OFFSET(BvhNode, lowerB, 32); PH_OFFSET(BvhNode, childB, 44); PH_OFFSET(BvhNode, upperB, 48);
 PH_OFFSET(BvhNode, countB, 60);
 PH_SIZE(EmissiveTriangle, 16); PH_OFFSET(EmissiveTriangle, area, 12);
-PH_SIZE(Light, 112); PH_OFFSET(Light, emitterFirst, 96); PH_OFFSET(Light, emitterCount, 100); PH_OFFSET(Light, type, 12); PH_OFFSET(Light, power, 16); PH_OFFSET(Light, radius, 28);
-PH_OFFSET(Light, axis, 32); PH_OFFSET(Light, spotOuter, 44); PH_OFFSET(Light, edgeU, 48);
-PH_OFFSET(Light, spotInner, 60); PH_OFFSET(Light, edgeV, 64); PH_OFFSET(Light, area, 76);
+PH_SIZE(Light, 112); PH_OFFSET(Light, emitterFirst, 96); PH_OFFSET(Light, emitterCount, 100); PH_OFFSET(Light, type, 12); PH_OFFSET(Light, power, 16); PH_OFFSET(Light, extent, 28);
+PH_OFFSET(Light, axis, 32); PH_OFFSET(Light, spotOuter, 44); PH_OFFSET(Light, vectorU, 48);
+PH_OFFSET(Light, spotInner, 60); PH_OFFSET(Light, vectorV, 64); PH_OFFSET(Light, area, 76);
 PH_OFFSET(Light, pickCdf, 80); PH_OFFSET(Light, pickProbability, 84); PH_OFFSET(Light, profile, 88);
 PH_OFFSET(Light, falloffMean, 92);
 PH_SIZE(CausticTarget, 16); PH_OFFSET(CausticTarget, radius, 12);
 PH_SIZE(Camera, 64); PH_OFFSET(Camera, lensRadius, 12); PH_OFFSET(Camera, forward, 16);
 PH_OFFSET(Camera, focusDistance, 28); PH_OFFSET(Camera, right, 32); PH_OFFSET(Camera, tanHalfFovY, 44);
 PH_OFFSET(Camera, up, 48); PH_OFFSET(Camera, aspect, 60);
-PH_SIZE(SceneInfo, 48); PH_OFFSET(SceneInfo, lightCount, 16); PH_OFFSET(SceneInfo, bvhNodeCount, 24); PH_OFFSET(SceneInfo, linearCount, 28);
-PH_OFFSET(SceneInfo, background, 32);
+PH_SIZE(SceneInfo, 48); PH_OFFSET(SceneInfo, lightCount, 4); PH_OFFSET(SceneInfo, targetCount, 8);
+PH_OFFSET(SceneInfo, infiniteLight, 12); PH_OFFSET(SceneInfo, bvhNodeCount, 16); PH_OFFSET(SceneInfo, linearCount, 20);
 PH_SIZE(GridParams, 48); PH_OFFSET(GridParams, cellSize, 12); PH_OFFSET(GridParams, resolution, 16);
 PH_OFFSET(GridParams, cellOffset, 28); PH_OFFSET(GridParams, photonOffset, 32);
 PH_OFFSET(GridParams, radius, 40); PH_OFFSET(GridParams, keyBits, 44);

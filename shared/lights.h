@@ -6,6 +6,7 @@
 #define PHOTON_SHARED_LIGHTS_H
 
 #include "intersect.h"
+#include "light_types.h"
 #include "rng.h"
 #include "sampling.h"
 
@@ -30,6 +31,15 @@ struct Cone {
     vec3 axis;
     float x;
 };
+
+// No photon: what a light that emits none (or no light) gives.
+PH_FN PhotonEmission noEmission() {
+    PhotonEmission e;
+    e.origin = vec3(0.0f);
+    e.direction = vec3(0.0f, 0.0f, 1.0f);
+    e.power = vec3(0.0f);
+    return e;
+}
 
 PH_FN uint pickLight(BUF_PARAM float u, PH_OUT(float) probability) {
     uint last = BUF(params).scene.lightCount - 1u;
@@ -57,18 +67,24 @@ PH_FN float spotFalloff(PH_IN(Light) light, float x) {
 
 // Radiant intensity [W/sr] of a point or spot light in the unit direction dir.
 PH_FN vec3 pointIntensity(PH_IN(Light) light, vec3 dir) {
-    if (light.type == LIGHT_SPOT) {
-        float falloff = spotFalloff(light, oneMinusCos(dir, light.axis));
-        return light.power * (falloff / (TWO_PI * light.spotOuter * light.falloffMean));
+    switch (light.type) {
+        case LIGHT_SPOT: {
+            float falloff = spotFalloff(light, oneMinusCos(dir, spotAxis(light)));
+            return light.power * (falloff / (TWO_PI * light.spotOuter * light.falloffMean));
+        }
+        case LIGHT_POINT:
+            if (light.profile == EMIT_HEMISPHERE) {
+                return light.power * (max(0.0f, dot(dir, hemisphereAxis(light))) * INV_PI);
+            }
+            return light.power * INV_FOUR_PI;
+        case LIGHT_SPHERE:
+        case LIGHT_QUAD:
+        case LIGHT_TRIANGLES:
+        case LIGHT_DIRECTIONAL:
+        case LIGHT_BACKGROUND:
+            break;  // no point source: nothing calls this for them
     }
-    if (light.profile == EMIT_HEMISPHERE) {
-        return light.power * (max(0.0f, dot(dir, light.axis)) * INV_PI);
-    }
-    return light.power * INV_FOUR_PI;
-}
-
-PH_FN bool isAreaLight(PH_IN(Light) light) {
-    return light.type == LIGHT_SPHERE || light.type == LIGHT_QUAD || light.type == LIGHT_TRIANGLES;
+    return vec3(0.0f);
 }
 
 // The emissive triangle of a LIGHT_TRIANGLES light that u ∈ [0, 1) picks, in proportion to power
@@ -92,31 +108,62 @@ PH_FN uint pickEmitter(BUF_PARAM PH_IN(Light) light, float u) {
 // its material's emission. areaPdf is the density of the point per unit area of the light.
 PH_FN void sampleAreaLight(BUF_PARAM PH_IN(Light) light, float u0, float u1, float u2, PH_OUT(vec3) p, PH_OUT(vec3) n,
                            PH_OUT(vec3) radiance, PH_OUT(float) areaPdf) {
-    if (light.type == LIGHT_TRIANGLES) {
-        EmissiveTriangle e = BUF(emissiveTriangles)[pickEmitter(BUF_ARG light, u0)];
-        Triangle tri = BUF(triangles)[e.triangle];
-        float su = sqrt(u1);
-        p = tri.v0 * (1.0f - su) + tri.v1 * (su * (1.0f - u2)) + tri.v2 * (su * u2);
-        n = unitVector(cross(tri.v1 - tri.v0, tri.v2 - tri.v0));
-        radiance = triangleEmission(BUF_ARG tri, su * (1.0f - u2), su * u2);
-        areaPdf = e.probability / e.area;
-        return;
-    }
-    radiance = light.power * (INV_PI / light.area);
-    areaPdf = 1.0f / light.area;
-    if (light.type == LIGHT_SPHERE) {
-        n = sampleUniformSphere(u1, u2);
-        p = light.position + light.radius * n;
-    } else {
-        n = light.axis;
-        p = light.position + u1 * light.edgeU + u2 * light.edgeV;
+    p = vec3(0.0f);
+    n = vec3(0.0f, 0.0f, 1.0f);
+    radiance = vec3(0.0f);
+    areaPdf = 1.0f;
+    switch (light.type) {
+        case LIGHT_TRIANGLES: {
+            EmissiveTriangle e = BUF(emissiveTriangles)[pickEmitter(BUF_ARG light, u0)];
+            Triangle tri = BUF(triangles)[e.triangle];
+            float su = sqrt(u1);
+            p = tri.v0 * (1.0f - su) + tri.v1 * (su * (1.0f - u2)) + tri.v2 * (su * u2);
+            n = unitVector(cross(tri.v1 - tri.v0, tri.v2 - tri.v0));
+            radiance = triangleEmission(BUF_ARG tri, su * (1.0f - u2), su * u2);
+            areaPdf = e.probability / e.area;
+            break;
+        }
+        case LIGHT_SPHERE:
+            radiance = light.power * (INV_PI / light.area);
+            areaPdf = 1.0f / light.area;
+            n = sampleUniformSphere(u1, u2);
+            p = sphereCenter(light) + sphereRadius(light) * n;
+            break;
+        case LIGHT_QUAD:
+            radiance = light.power * (INV_PI / light.area);
+            areaPdf = 1.0f / light.area;
+            n = quadNormal(light);
+            p = quadCorner(light) + u1 * quadEdgeU(light) + u2 * quadEdgeV(light);
+            break;
+        case LIGHT_POINT:
+        case LIGHT_SPOT:
+        case LIGHT_DIRECTIONAL:
+        case LIGHT_BACKGROUND:
+            break;  // no area: isAreaLight() is false, nothing calls this for them
     }
 }
 
 // The start of a directional light's photon through point (x, y) of the unit disk: on the disk of
 // the scene's bounding sphere, facing its direction of travel, behind everything in the scene.
 PH_FN vec3 directionalOrigin(PH_IN(Light) light, vec2 q) {
-    return light.position + localToWorld(vec3(q.x, q.y, -1.001f), light.axis) * light.radius;
+    return boundingCenter(light) + localToWorld(vec3(q.x, q.y, -1.001f), directionalDirection(light)) * boundingRadius(light);
+}
+
+// An area light's photon: a point by area ((u3, u4); u0 picks an emissive triangle), a direction
+// cosine-weighted about its normal (u1, u2).
+PH_FN PhotonEmission emitAreaPhoton(BUF_PARAM PH_IN(Light) light, float u0, float u1, float u2, float u3,
+                                    float u4) {
+    vec3 n;
+    vec3 p;
+    vec3 radiance;
+    float areaPdf;
+    sampleAreaLight(BUF_ARG light, u0, u3, u4, p, n, radiance, areaPdf);
+    PhotonEmission e;
+    e.direction = localToWorld(sampleCosineHemisphere(u1, u2), n);
+    e.origin = offsetRayOrigin(p, n, n);
+    // A Lambertian emitter sends πL per unit area; over the area density that is the flux.
+    e.power = radiance * (PI / areaPdf);
+    return e;
 }
 
 // Photon of the global pass, drawn from the light's own emission distribution. Four draws, five
@@ -126,33 +173,40 @@ PH_FN PhotonEmission emitPhoton(BUF_PARAM PH_IN(Light) light, PH_INOUT(Rng) rng)
     float u2 = rngNext(rng);
     float u3 = rngNext(rng);
     float u4 = rngNext(rng);
-    PhotonEmission e;
-    e.origin = light.position;
-    e.power = light.power;
-    if (light.type == LIGHT_POINT) {
-        if (light.profile == EMIT_HEMISPHERE) {
-            e.direction = localToWorld(sampleCosineHemisphere(u1, u2), light.axis);
-        } else {
-            e.direction = sampleUniformSphere(u1, u2);
+    PhotonEmission e = noEmission();
+    switch (light.type) {
+        case LIGHT_POINT:
+            e.origin = pointPosition(light);
+            e.power = light.power;
+            if (light.profile == EMIT_HEMISPHERE) {
+                e.direction = localToWorld(sampleCosineHemisphere(u1, u2), hemisphereAxis(light));
+            } else {
+                e.direction = sampleUniformSphere(u1, u2);
+            }
+            break;
+        case LIGHT_SPOT: {
+            float x = u1 * light.spotOuter;
+            e.origin = pointPosition(light);
+            e.direction = directionAroundAxis(spotAxis(light), x, u2);
+            e.power = light.power * (spotFalloff(light, x) / light.falloffMean);
+            break;
         }
-    } else if (light.type == LIGHT_SPOT) {
-        float x = u1 * light.spotOuter;
-        e.direction = directionAroundAxis(light.axis, x, u2);
-        e.power = light.power * (spotFalloff(light, x) / light.falloffMean);
-    } else if (light.type == LIGHT_DIRECTIONAL) {
-        e.origin = directionalOrigin(light, sampleUniformDisk(u1, u2));
-        e.direction = light.axis;
-    } else {
-        float u0 = light.type == LIGHT_TRIANGLES ? rngNext(rng) : 0.0f;
-        vec3 n;
-        vec3 p;
-        vec3 radiance;
-        float areaPdf;
-        sampleAreaLight(BUF_ARG light, u0, u3, u4, p, n, radiance, areaPdf);
-        e.direction = localToWorld(sampleCosineHemisphere(u1, u2), n);
-        e.origin = offsetRayOrigin(p, n, n);
-        // A Lambertian emitter sends πL per unit area; over the area density that is the flux.
-        e.power = radiance * (PI / areaPdf);
+        case LIGHT_DIRECTIONAL:
+            e.origin = directionalOrigin(light, sampleUniformDisk(u1, u2));
+            e.direction = directionalDirection(light);
+            e.power = light.power;
+            break;
+        case LIGHT_SPHERE:
+        case LIGHT_QUAD:
+            e = emitAreaPhoton(BUF_ARG light, 0.0f, u1, u2, u3, u4);
+            break;
+        case LIGHT_TRIANGLES: {
+            float u0 = rngNext(rng);  // which triangle
+            e = emitAreaPhoton(BUF_ARG light, u0, u1, u2, u3, u4);
+            break;
+        }
+        case LIGHT_BACKGROUND:
+            break;  // emits no photons: it is not among the lights photons are emitted from
     }
     return e;
 }
@@ -168,16 +222,26 @@ PH_FN float oneMinusCosSum(float xa, float xb) {
 PH_FN bool emitterCone(PH_IN(Light) light, vec3 n, PH_OUT(Cone) cone) {
     cone.axis = n;
     cone.x = 1.0f;
-    if (light.type == LIGHT_SPOT) {
-        cone.axis = light.axis;
-        cone.x = light.spotOuter;
-        return true;
+    switch (light.type) {
+        case LIGHT_SPOT:
+            cone.axis = spotAxis(light);
+            cone.x = light.spotOuter;
+            return true;
+        case LIGHT_POINT:
+            cone.axis = hemisphereAxis(light);
+            return light.profile == EMIT_HEMISPHERE;
+        case LIGHT_SPHERE:
+        case LIGHT_QUAD:
+        case LIGHT_TRIANGLES:
+            return true;  // the hemisphere about n
+        case LIGHT_DIRECTIONAL:
+            cone.axis = directionalDirection(light);
+            cone.x = 0.0f;
+            return true;  // one direction (its caustic photons are aimed by emitDirectionalCausticPhoton)
+        case LIGHT_BACKGROUND:
+            return false;  // from everywhere (it emits no photons)
     }
-    if (light.type == LIGHT_POINT) {
-        cone.axis = light.axis;
-        return light.profile == EMIT_HEMISPHERE;
-    }
-    return true;
+    return false;  // no such type (Scene::finalize refuses it)
 }
 
 // The cone from `origin` that holds caustic target t, clipped to the emitter's cone: weight 0
@@ -214,8 +278,10 @@ PH_FN PhotonEmission emitDirectionalCausticPhoton(BUF_PARAM PH_IN(Light) light, 
     float u2 = rngNext(rng);
     float u3 = rngNext(rng);
     PhotonEmission e;
-    e.direction = light.axis;
-    e.origin = light.position;
+    vec3 center = boundingCenter(light);
+    float radius = boundingRadius(light);
+    e.direction = directionalDirection(light);
+    e.origin = center;
     e.power = vec3(0.0f);
     uint count = BUF(params).scene.targetCount;
     float total = 0.0f;
@@ -237,40 +303,38 @@ PH_FN PhotonEmission emitDirectionalCausticPhoton(BUF_PARAM PH_IN(Light) light, 
     }
     // The target's centre projected onto the light's start disk, in its unit coordinates.
     CausticTarget t = BUF(targets)[chosen];
-    vec3 rel = (t.center - light.position) * (1.0f / light.radius);
-    vec3 axisX = localToWorld(vec3(1.0f, 0.0f, 0.0f), light.axis);
-    vec3 axisY = localToWorld(vec3(0.0f, 1.0f, 0.0f), light.axis);
-    vec2 q = vec2(dot(rel, axisX), dot(rel, axisY)) + sampleUniformDisk(u2, u3) * (t.radius / light.radius);
+    vec3 rel = (t.center - center) * (1.0f / radius);
+    vec3 axisX = localToWorld(vec3(1.0f, 0.0f, 0.0f), e.direction);
+    vec3 axisY = localToWorld(vec3(0.0f, 1.0f, 0.0f), e.direction);
+    vec2 q = vec2(dot(rel, axisX), dot(rel, axisY)) + sampleUniformDisk(u2, u3) * (t.radius / radius);
     float pdf = 0.0f;  // per unit area of the start disk, in scene units
     for (uint k = 0u; k < count; ++k) {
         CausticTarget tk = BUF(targets)[k];
-        vec3 rk = (tk.center - light.position) * (1.0f / light.radius);
+        vec3 rk = (tk.center - center) * (1.0f / radius);
         vec2 d = q - vec2(dot(rk, axisX), dot(rk, axisY));
-        float rr = tk.radius / light.radius;
+        float rr = tk.radius / radius;
         if (k == chosen || dot(d, d) <= rr * rr) {
             pdf += (tk.radius * tk.radius / total) / (PI * tk.radius * tk.radius);
         }
     }
     e.origin = directionalOrigin(light, q);
-    e.power = light.edgeU / pdf;  // irradiance / density
+    e.power = directionalIrradiance(light) / pdf;  // irradiance / density
     return e;
 }
 
-// Photon of the caustic pass: its direction is drawn from the mixture of cones towards the
-// specular objects, and its power is intensity / mixture density, which keeps it unbiased.
-// Five draws.
-PH_FN PhotonEmission emitCausticPhoton(BUF_PARAM PH_IN(Light) light, PH_INOUT(Rng) rng) {
-    if (light.type == LIGHT_DIRECTIONAL) {
-        return emitDirectionalCausticPhoton(BUF_ARG light, rng);
-    }
+// Photon of the caustic pass from a point or area light: its direction is drawn from the mixture
+// of cones towards the specular objects, and its power is intensity / mixture density, which
+// keeps it unbiased. Five draws, six for emissive triangles.
+PH_FN PhotonEmission emitConeCausticPhoton(BUF_PARAM PH_IN(Light) light, PH_INOUT(Rng) rng) {
     float u1 = rngNext(rng);
     float u2 = rngNext(rng);
     float u3 = rngNext(rng);
     float u4 = rngNext(rng);
     float u5 = rngNext(rng);
     PhotonEmission e;
-    vec3 n = light.axis;
-    e.origin = light.position;
+    // Point and spot lights emit from their position; area lights from a point drawn below.
+    vec3 n = light.type == LIGHT_SPOT ? spotAxis(light) : hemisphereAxis(light);
+    e.origin = pointPosition(light);
     e.direction = n;
     e.power = vec3(0.0f);
     vec3 radiance = vec3(0.0f);
@@ -330,6 +394,23 @@ PH_FN PhotonEmission emitCausticPhoton(BUF_PARAM PH_IN(Light) light, PH_INOUT(Rn
     return e;
 }
 
+// Photon of the caustic pass, aimed at the specular objects.
+PH_FN PhotonEmission emitCausticPhoton(BUF_PARAM PH_IN(Light) light, PH_INOUT(Rng) rng) {
+    switch (light.type) {
+        case LIGHT_POINT:
+        case LIGHT_SPOT:
+        case LIGHT_SPHERE:
+        case LIGHT_QUAD:
+        case LIGHT_TRIANGLES:
+            return emitConeCausticPhoton(BUF_ARG light, rng);
+        case LIGHT_DIRECTIONAL:
+            return emitDirectionalCausticPhoton(BUF_ARG light, rng);
+        case LIGHT_BACKGROUND:
+            break;  // emits no photons: it is not among the lights photons are emitted from
+    }
+    return noEmission();
+}
+
 // Direct-light sample towards `light` from x. Two draws, three for emissive triangles.
 PH_FN LightSample sampleDirectLight(BUF_PARAM PH_IN(Light) light, vec3 x, PH_INOUT(Rng) rng) {
     float u1 = rngNext(rng);
@@ -337,44 +418,83 @@ PH_FN LightSample sampleDirectLight(BUF_PARAM PH_IN(Light) light, vec3 x, PH_INO
     LightSample ls;
     ls.radiance = vec3(0.0f);
     ls.direction = vec3(0.0f, 0.0f, 1.0f);
-    ls.point = light.position;
-    if (light.type == LIGHT_POINT || light.type == LIGHT_SPOT) {
-        vec3 d = light.position - x;
-        float dist2 = dot(d, d);
-        ls.direction = d * (1.0f / sqrt(dist2));
-        ls.radiance = pointIntensity(light, -ls.direction) / dist2;
-    } else if (light.type == LIGHT_DIRECTIONAL) {
-        // Irradiance E from one direction; the shadow ray runs out of the bounding sphere.
-        ls.direction = -light.axis;
-        ls.point = x + ls.direction * (2.0f * (length(x - light.position) + light.radius));
-        ls.radiance = light.edgeU;
-    } else if (light.type == LIGHT_SPHERE) {
-        // Uniform over the cone that the sphere subtends: density 1 / (2π x).
-        float coneX = sphereConeX(x, light.position, light.radius);
-        if (coneX >= 2.0f) {
-            return ls;
+    ls.point = x;
+    switch (light.type) {
+        case LIGHT_POINT:
+        case LIGHT_SPOT: {
+            ls.point = pointPosition(light);
+            vec3 d = ls.point - x;
+            float dist2 = dot(d, d);
+            ls.direction = d * (1.0f / sqrt(dist2));
+            ls.radiance = pointIntensity(light, -ls.direction) / dist2;
+            break;
         }
-        vec3 axis = unitVector(light.position - x);
-        ls.direction = sampleUniformCone(axis, coneX, u1, u2);
-        float t = intersectSphere(makeRay(x, ls.direction, FLOAT_MAX), light.position, light.radius, FLOAT_MAX);
-        ls.point = x + ls.direction * (t < FLOAT_MAX ? t : dot(light.position - x, ls.direction));
-        ls.radiance = light.power * (INV_PI / light.area) * (TWO_PI * coneX);
-    } else {
-        // Quads and emissive triangles, by area: density d² / (cosθ_light · area) in solid angle.
-        float u0 = light.type == LIGHT_TRIANGLES ? rngNext(rng) : 0.0f;
-        vec3 n;
-        vec3 radiance;
-        float areaPdf;
-        sampleAreaLight(BUF_ARG light, u0, u1, u2, ls.point, n, radiance, areaPdf);
-        vec3 d = ls.point - x;
-        float dist2 = dot(d, d);
-        ls.direction = d * (1.0f / sqrt(dist2));
-        float cosLight = -dot(ls.direction, n);
-        if (cosLight > 0.0f && dist2 > 0.0f) {
-            ls.radiance = radiance * (cosLight / (areaPdf * dist2));
+        case LIGHT_DIRECTIONAL:
+            // Irradiance E from one direction; the shadow ray runs out of the bounding sphere.
+            ls.direction = -directionalDirection(light);
+            ls.point = x + ls.direction * (2.0f * (length(x - boundingCenter(light)) + boundingRadius(light)));
+            ls.radiance = directionalIrradiance(light);
+            break;
+        case LIGHT_SPHERE: {
+            // Uniform over the cone that the sphere subtends: density 1 / (2π x).
+            vec3 center = sphereCenter(light);
+            float radius = sphereRadius(light);
+            ls.point = center;
+            float coneX = sphereConeX(x, center, radius);
+            if (coneX >= 2.0f) {
+                break;
+            }
+            vec3 axis = unitVector(center - x);
+            ls.direction = sampleUniformCone(axis, coneX, u1, u2);
+            float t = intersectSphere(makeRay(x, ls.direction, FLOAT_MAX), center, radius, FLOAT_MAX);
+            ls.point = x + ls.direction * (t < FLOAT_MAX ? t : dot(center - x, ls.direction));
+            ls.radiance = light.power * (INV_PI / light.area) * (TWO_PI * coneX);
+            break;
         }
+        case LIGHT_QUAD:
+        case LIGHT_TRIANGLES: {
+            // By area: density d² / (cosθ_light · area) in solid angle.
+            float u0 = light.type == LIGHT_TRIANGLES ? rngNext(rng) : 0.0f;
+            vec3 n;
+            vec3 radiance;
+            float areaPdf;
+            sampleAreaLight(BUF_ARG light, u0, u1, u2, ls.point, n, radiance, areaPdf);
+            vec3 d = ls.point - x;
+            float dist2 = dot(d, d);
+            ls.direction = d * (1.0f / sqrt(dist2));
+            float cosLight = -dot(ls.direction, n);
+            if (cosLight > 0.0f && dist2 > 0.0f) {
+                ls.radiance = radiance * (cosLight / (areaPdf * dist2));
+            }
+            break;
+        }
+        case LIGHT_BACKGROUND:
+            break;  // not sampled: it is not among the lights direct light loops over
     }
     return ls;
+}
+
+// The radiance that a ray leaving the scene along `direction` brings: the scene's infinite light
+// (SceneInfo::infiniteLight). Eye paths ask it where they miss the scene. It lies outside
+// `lights`, so that photon emission and direct light do not meet it: a uniform background only
+// colours what the camera sees through mirrors and glass (as SceneInfo.background did), and no
+// random number drawn for the lights changes. An infinite light that also emits (an environment
+// map) is one more Light in `lights` as well.
+PH_FN vec3 infiniteRadiance(BUF_PARAM vec3 direction) {
+    PH_UNUSED(direction);  // until an infinite light depends on it
+    Light light = BUF(infiniteLights)[BUF(params).scene.infiniteLight];
+    switch (light.type) {
+        case LIGHT_BACKGROUND:
+            return backgroundRadiance(light);  // the same whatever the direction
+        case LIGHT_POINT:
+        case LIGHT_SPOT:
+        case LIGHT_SPHERE:
+        case LIGHT_QUAD:
+        case LIGHT_TRIANGLES:
+        case LIGHT_DIRECTIONAL:
+            break;  // not infinite (Scene::finalize puts none of these there)
+    }
+    return vec3(0.0f);
 }
 
 PH_NAMESPACE_END

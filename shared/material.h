@@ -42,31 +42,35 @@ PH_FN bool pbrHasTracedLobes(PH_IN(Material) m) {
            (m.metallic < 1.0f && m.transmission > 0.0f);
 }
 
-PH_FN uint materialFlags(PH_IN(Material) m) {
-    uint emits = isBlack(m.emission) ? 0u : SURFACE_EMITS;  // any material may also emit (glTF, MTL Ke)
-    if (m.type == MATERIAL_DIFFUSE) {
-        return emits | SURFACE_STORES_PHOTONS | SURFACE_ENDS_EYE_PATHS | SURFACE_LAMBERTIAN;
-    }
-    if (m.type == MATERIAL_GLOSSY) {
-        return emits | SURFACE_STORES_PHOTONS | SURFACE_ENDS_EYE_PATHS;
-    }
-    if (m.type == MATERIAL_REFLECTIVE) {
-        return emits | SURFACE_STORES_PHOTONS | SURFACE_ENDS_EYE_PATHS | SURFACE_SPECULAR_COAT | SURFACE_LAMBERTIAN;
-    }
-    if (m.type == MATERIAL_MIRROR || m.type == MATERIAL_GLASS) {
-        return emits | SURFACE_CAUSTIC_CASTER;
-    }
-    if (m.type == MATERIAL_EMITTER) {
-        return SURFACE_EMITS;
-    }
-    // MATERIAL_PBR (the host refuses any other type: Scene::finalize).
+// What a glTF material does (its emission aside), by which of its lobes are traced and which stored.
+PH_FN uint pbrFlags(PH_IN(Material) m) {
     if ((m.flags & MATERIAL_FLAG_STORED_PART) != 0u || !pbrHasTracedLobes(m)) {
-        return emits | SURFACE_STORES_PHOTONS | SURFACE_ENDS_EYE_PATHS;
+        return SURFACE_STORES_PHOTONS | SURFACE_ENDS_EYE_PATHS;
     }
     if (!pbrHasStoredLobes(m)) {
-        return emits | SURFACE_CAUSTIC_CASTER;
+        return SURFACE_CAUSTIC_CASTER;
     }
-    return emits | SURFACE_STORES_PHOTONS | SURFACE_ENDS_EYE_PATHS | SURFACE_SPECULAR_COAT;
+    return SURFACE_STORES_PHOTONS | SURFACE_ENDS_EYE_PATHS | SURFACE_SPECULAR_COAT;
+}
+
+PH_FN uint materialFlags(PH_IN(Material) m) {
+    uint emits = isBlack(m.emission) ? 0u : SURFACE_EMITS;  // any material may also emit (glTF, MTL Ke)
+    switch (m.type) {
+        case MATERIAL_DIFFUSE:
+            return emits | SURFACE_STORES_PHOTONS | SURFACE_ENDS_EYE_PATHS | SURFACE_LAMBERTIAN;
+        case MATERIAL_GLOSSY:
+            return emits | SURFACE_STORES_PHOTONS | SURFACE_ENDS_EYE_PATHS;
+        case MATERIAL_REFLECTIVE:
+            return emits | SURFACE_STORES_PHOTONS | SURFACE_ENDS_EYE_PATHS | SURFACE_SPECULAR_COAT | SURFACE_LAMBERTIAN;
+        case MATERIAL_MIRROR:
+        case MATERIAL_GLASS:
+            return emits | SURFACE_CAUSTIC_CASTER;
+        case MATERIAL_EMITTER:
+            return SURFACE_EMITS;
+        case MATERIAL_PBR:
+            return emits | pbrFlags(m);
+    }
+    return 0u;  // no such type: Scene::finalize refuses it, so no kernel sees one
 }
 
 PH_FN bool surfaceIs(PH_IN(Material) m, uint flag) { return (materialFlags(m) & flag) != 0u; }
@@ -76,8 +80,9 @@ PH_FN bool makesCausticPaths(PH_IN(Material) m) {
     return surfaceIs(m, SURFACE_CAUSTIC_CASTER | SURFACE_SPECULAR_COAT);
 }
 
-// Probability that a reflective material's mirror coat, not its Lambertian base, takes a ray.
-PH_FN float mirrorCoatProbability(PH_IN(Material) m) {
+// Probability that a ray takes the specular lobe of a two-lobe material (reflective: its mirror
+// coat; glossy: its GGX lobe), not its Lambertian base: the lobes' shares of the larger colours.
+PH_FN float specularLobeProbability(PH_IN(Material) m) {
     float d = maxComponent(m.albedo);
     float s = maxComponent(m.specular);
     return (d + s) > 0.0f ? s / (d + s) : 0.0f;

@@ -19,6 +19,9 @@
 //    such a result PH_PRECISE (GLSL `precise`: no contraction, no inexact rewrites; empty in C++).
 //  - Names reserved in GLSL stay unused: sample, input, output, filter, buffer, shared, half,
 //    active, common, partition, and anything with a double underscore.
+//  - A dispatch over a type (LIGHT_*, MATERIAL_*, PRIM_*) is a switch with a case for each value
+//    and no default: the host refuses unknown values, so nothing may pretend to handle them.
+//  - A parameter one version of a function does not read is marked PH_UNUSED(name) (C++ warns).
 //  - Buffer structs are declared `struct PH_ALIGN16 Name`.
 //  - Buffers are reached through BUF(name): a global buffer in GLSL, a member of the Bindings
 //    struct in C++ that every such function receives first (BUF_PARAM / BUF_ARG).
@@ -38,6 +41,7 @@
 #define PH_NAMESPACE_BEGIN
 #define PH_NAMESPACE_END
 #define PH_PRECISE precise
+#define PH_UNUSED(x)
 #define PH_ALIGN16
 #define BUF_PARAM
 #define BUF_ARG
@@ -65,6 +69,7 @@
     using uint = std::uint32_t;
 #define PH_NAMESPACE_END }
 #define PH_PRECISE
+#define PH_UNUSED(x) (void)(x)  // a parameter this version of a function does not need
 // Buffer structs are multiples of 16 bytes; saying so lets compilers load them 16 bytes at a time
 // (GLM's vec3 alone would make them 4-byte aligned).
 #define PH_ALIGN16 alignas(16)

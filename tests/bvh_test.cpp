@@ -15,7 +15,7 @@ namespace photon {
 namespace {
 
 // The nearest hit by testing every primitive (the traversal's reference).
-TraceResult bruteForce(const Bindings& b, const Ray& ray) {
+TraceResult bruteForce(const Scene& scene, const Bindings& b, const Ray& ray) {
     TraceResult r;
     r.t = ray.tMax;
     r.kind = NONE;
@@ -27,7 +27,7 @@ TraceResult bruteForce(const Bindings& b, const Ray& ray) {
             r = {t, PRIM_PLANE, i, 0.0f, 0.0f};
         }
     }
-    uint counts[3] = {b.params.scene.sphereCount, b.params.scene.quadCount, b.params.scene.triangleCount};
+    uint counts[3] = {uint(scene.spheres.size()), uint(scene.quads.size()), uint(scene.triangles.size())};
     uint kinds[3] = {PRIM_SPHERE, PRIM_QUAD, PRIM_TRIANGLE};
     for (int k = 0; k < 3; ++k) {
         for (uint i = 0; i < counts[k]; ++i) {
@@ -60,7 +60,7 @@ int compareWithBruteForce(const Scene& scene, int rays, std::uint32_t seed) {
         }
         float tMax = i % 3 == 0 ? glm::length(extent) * 0.5f : FLOAT_MAX;
         Ray ray = makeRay(origin, glm::normalize(d), tMax);
-        TraceResult expected = bruteForce(b, ray);
+        TraceResult expected = bruteForce(sb.scene, b, ray);
         TraceResult actual = traceRay(b, ray, QUERY_CLOSEST);
         bool any = traceRay(b, ray, QUERY_ANY).kind != NONE;
         bool same = actual.kind == expected.kind && actual.t == expected.t &&

@@ -2,6 +2,7 @@
 // its transforms, the material table, textures decoded to linear, cameras and lights in their
 // units), and every kind of bad file is one InputError naming the file, the place and the reason.
 #include "core/model_loader.h"
+#include "shared/light_types.h"
 
 #include <gtest/gtest.h>
 
@@ -500,7 +501,7 @@ TEST(GltfLoader, CameraAndPunctualLightsInPhotonUnits) {
     expectNear(scene.lights[0].power, glm::vec3(4.0f * PI, 2.0f * PI, 4.0f * PI), 1e-4f);
     // 6830 lux is 10 W/m², travelling down the node's -z (here straight down).
     EXPECT_EQ(scene.lights[1].type, LIGHT_DIRECTIONAL);
-    expectNear(scene.lights[1].edgeU, glm::vec3(10.0f), 1e-4f);
+    expectNear(directionalIrradiance(scene.lights[1]), glm::vec3(10.0f), 1e-4f);
     expectNear(scene.lights[1].axis, glm::vec3(0, -1, 0));
     EXPECT_EQ(scene.lights[2].type, LIGHT_SPOT);
     expectNear(scene.lights[2].axis, glm::vec3(0, 0, -1));
@@ -539,6 +540,14 @@ TEST(GltfLoader, BadFilesNameTheJsonPointerAndTheReason) {
         Gltf g;
         g.parts["meshes"] = R"([{"primitives": [{"attributes": {"POSITION": 7}}]}])";
         EXPECT_EQ(errorOf("b.gltf", g.text()), "b.gltf: /meshes/0/primitives/0: accessor 7 does not exist");
+    }
+    for (const char* ior : {"0", "0.5"}) {
+        Gltf g;
+        g.parts["extensionsUsed"] = R"(["KHR_materials_ior"])";
+        g.parts["materials"] = std::string(R"([{"extensions": {"KHR_materials_ior": {"ior": )") + ior + "}}}]";
+        g.parts["meshes"] = R"([{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": 0}]}])";
+        std::string reason = ior[1] ? "must be from 1 to 10" : "0 (a reflectance of 1) is not supported: use 1 to 10";
+        EXPECT_EQ(errorOf("b.gltf", g.text()), "b.gltf: /materials/0/extensions/KHR_materials_ior/ior: " + reason);
     }
     {
         Gltf g;

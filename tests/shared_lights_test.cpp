@@ -185,5 +185,46 @@ TEST(DirectLight, AreaLightsDoNotShadowThemselvesAtGrazingAngles) {
     }
 }
 
+// Every type answers lightFlags once, and nothing else does.
+TEST(LightTypes, EveryTypeHasFlagsAndANameAndNoOtherDoes) {
+    for (uint type = 0; type < LIGHT_TYPE_COUNT; ++type) {
+        EXPECT_NE(lightFlags(type), 0u) << lightTypeName(type);
+    }
+    EXPECT_EQ(lightFlags(LIGHT_TYPE_COUNT), 0u);
+    EXPECT_THROW(lightTypeName(LIGHT_TYPE_COUNT), std::logic_error);
+    EXPECT_EQ(lightFlags(LIGHT_BACKGROUND), LIGHT_FLAG_INFINITE);
+    EXPECT_EQ(lightFlags(LIGHT_DIRECTIONAL), LIGHT_FLAG_DELTA_DIRECTION);
+}
+
+// A type the shared code does not know never reaches a kernel: finalize() refuses it.
+TEST(Finalize, RefusesUnknownLightAndMaterialTypes) {
+    Scene s;
+    s.addPointLight(vec3(0), vec3(1.0f));
+    s.lights[0].type = LIGHT_TYPE_COUNT;
+    EXPECT_THROW(s.finalize(), std::logic_error);
+    s.lights[0].type = LIGHT_BACKGROUND;  // the background is the scene's, not one of its lights
+    EXPECT_THROW(s.finalize(), std::logic_error);
+    s.lights[0].type = LIGHT_POINT;
+    Material odd = makeDiffuse(vec3(0.5f));
+    odd.type = MATERIAL_TYPE_COUNT;
+    s.addMaterial("odd", odd);
+    EXPECT_THROW(s.finalize(), std::logic_error);
+}
+
+// Rays that leave the scene ask its infinite light, which emits no photons and is not sampled
+// for direct light: it is not among the lights.
+TEST(InfiniteLight, RaysThatMissSeeTheBackgroundAndNothingElseDoes) {
+    Scene s;
+    s.addPointLight(vec3(0), vec3(1.0f));
+    s.background = vec3(0.25f, 0.5f, 2.0f);
+    test::SceneBindings sb(s);
+    EXPECT_EQ(sb.scene.lights.size(), 1u);
+    EXPECT_EQ(sb.bindings.params.scene.lightCount, 1u);
+    ASSERT_EQ(sb.scene.infiniteLights.size(), 1u);
+    EXPECT_EQ(sb.scene.infiniteLights[0].type, LIGHT_BACKGROUND);
+    vec3 seen = infiniteRadiance(sb.bindings, vec3(0, 0, 1));
+    EXPECT_EQ(seen, vec3(0.25f, 0.5f, 2.0f));
+}
+
 }  // namespace
 }  // namespace photon

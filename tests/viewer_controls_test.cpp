@@ -7,6 +7,7 @@
 #include "core/scene_loader.h"
 #include "viewer/camera_controller.h"
 #include "viewer/light_editor.h"
+#include "shared/light_types.h"
 
 namespace photon::viewer {
 namespace {
@@ -110,6 +111,47 @@ TEST(LightEditor, MovesLightsAndTheirSurfacesWithoutDrift) {
     EXPECT_GE(moved.boundsMax.x, 1.6f - 1e-4f);                                   // finalized again
     editor.reset();
     expectNear(editor.scene().lights[1].position, glm::vec3(0.5f, 1.0f, 0.0f), 0.0f);
+}
+
+// Every type can be moved: a directional light turns to shine from its moved point, the
+// emissive triangles move together, and the background's radiance is edited.
+TEST(LightEditor, EditsEveryLightType) {
+    Scene s;
+    std::uint32_t white = s.addMaterial("white", makeDiffuse(glm::vec3(0.7f)));
+    Material glow = makeDiffuse(glm::vec3(0.5f));
+    glow.emission = glm::vec3(2.0f);
+    std::uint32_t panel = s.addMaterial("panel", glow);
+    s.addQuad(glm::vec3(-1, 0, -1), glm::vec3(0, 0, 2), glm::vec3(2, 0, 0), white);
+    s.addTriangle(glm::vec3(0, 1, 0), glm::vec3(0.2f, 1, 0), glm::vec3(0, 1, 0.2f), panel);
+    s.addSpotLight(glm::vec3(0, 1.5f, 0), glm::vec3(0, -1, 0), glm::vec3(10.0f), 30.0f, 20.0f);
+    s.addDirectionalLight(glm::vec3(0, -1, 0), glm::vec3(1.0f));
+    s.finalize();
+    LightEditor editor(s);
+    ASSERT_EQ(editor.lightCount(), 3u);
+    EXPECT_EQ(editor.lightName(0), "spot 0");
+    EXPECT_EQ(editor.lightName(1), "directional 1");
+    EXPECT_EQ(editor.lightName(2), "emissive triangles 2");
+
+    // The sun's point lies above the scene; moved sideways, the light tilts.
+    glm::vec3 sun = editor.position(1);
+    EXPECT_GT(sun.y, s.boundsMax.y);
+    editor.setPosition(1, sun + glm::vec3(sun.y - 0.5f * (s.boundsMin.y + s.boundsMax.y), 0, 0));
+    editor.move(2, glm::vec3(0, 0.5f, 0));
+    editor.setBackground(glm::vec3(0.1f, 0.2f, 0.3f));
+    Scene moved = editor.scene();
+    glm::vec3 axis = directionalDirection(moved.lights[1]);
+    EXPECT_LT(axis.x, -0.5f);
+    EXPECT_LT(axis.y, -0.5f);
+    expectNear(moved.triangles.back().v0, glm::vec3(0, 1.5f, 0), 1e-6f);  // the emissive triangle
+    expectNear(moved.quads.front().corner, glm::vec3(-1, 0, -1), 0.0f);    // the floor stays
+    EXPECT_EQ(moved.lights[2].type, LIGHT_TRIANGLES);
+    expectNear(backgroundRadiance(moved.infiniteLights[0]), glm::vec3(0.1f, 0.2f, 0.3f), 0.0f);
+
+    editor.reset();
+    Scene back = editor.scene();
+    expectNear(directionalDirection(back.lights[1]), glm::vec3(0, -1, 0), 0.0f);
+    expectNear(back.triangles.back().v0, glm::vec3(0, 1, 0), 0.0f);
+    expectNear(backgroundRadiance(back.infiniteLights[0]), glm::vec3(0.0f), 0.0f);
 }
 
 TEST(LightEditor, CornellLightMovesWithTheScene) {

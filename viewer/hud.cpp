@@ -135,6 +135,11 @@ void renderSection(ViewState& state, const HudInfo& info) {
 }
 
 void lightSection(ViewState& state, LightEditor& lights) {
+    glm::vec3 background = lights.background();
+    if (ImGui::ColorEdit3("background", &background.x, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR)) {
+        lights.setBackground(glm::max(background, glm::vec3(0.0f)));
+        state.lightsChanged = true;
+    }
     if (lights.lightCount() == 0) {
         return;
     }

@@ -1,0 +1,72 @@
+// What each light type is, answered in one place (in the manner of pbrt-v4's LightType), and where
+// each type keeps its parameters in a Light. A Light is one std430 struct for every type, so some
+// of its fields hold different things for different types; every stage reads them through the
+// accessors below, whose names say what the field is for that type. The host writes them in
+// Scene's add*Light functions and Scene::finalize, which refuses a type it does not know: no
+// kernel ever sees one, and the switches over types here and in lights.h have a case for each.
+#ifndef PHOTON_SHARED_LIGHT_TYPES_H
+#define PHOTON_SHARED_LIGHT_TYPES_H
+
+#include "layout.h"
+
+PH_NAMESPACE_BEGIN
+
+PH_CONST uint LIGHT_FLAG_DELTA_POSITION = 1u;   // emits from one point: no ray can hit it
+PH_CONST uint LIGHT_FLAG_DELTA_DIRECTION = 2u;  // emits along one direction: no ray can hit it
+PH_CONST uint LIGHT_FLAG_AREA = 4u;             // a surface of the scene emits: rays hit it
+PH_CONST uint LIGHT_FLAG_INFINITE = 8u;         // surrounds the scene: rays that leave it see it
+
+PH_FN uint lightFlags(uint type) {
+    switch (type) {
+        case LIGHT_POINT:
+        case LIGHT_SPOT:
+            return LIGHT_FLAG_DELTA_POSITION;
+        case LIGHT_SPHERE:
+        case LIGHT_QUAD:
+        case LIGHT_TRIANGLES:
+            return LIGHT_FLAG_AREA;
+        case LIGHT_DIRECTIONAL:
+            return LIGHT_FLAG_DELTA_DIRECTION;
+        case LIGHT_BACKGROUND:
+            return LIGHT_FLAG_INFINITE;
+    }
+    return 0u;  // no such type (Scene::finalize refuses it)
+}
+
+PH_FN bool isAreaLight(PH_IN(Light) light) { return (lightFlags(light.type) & LIGHT_FLAG_AREA) != 0u; }
+
+// ---- Where each type keeps what (the fields of Light) -----------------------------------------
+// Every type: type, power (the flux Φ it emits [W per channel], 0 for what emits no photons),
+// pickCdf and pickProbability (how photon emission picks it among the scene's lights).
+
+// LIGHT_POINT: profile (EMIT_*); a hemispherical one emits about its axis.
+PH_FN vec3 pointPosition(PH_IN(Light) light) { return light.position; }
+PH_FN vec3 hemisphereAxis(PH_IN(Light) light) { return light.axis; }
+
+// LIGHT_SPOT: also spotOuter, spotInner (1 - cos of the cone's and the falloff's half-angles) and
+// falloffMean (the falloff's mean over the cone). pointPosition is its position too.
+PH_FN vec3 spotAxis(PH_IN(Light) light) { return light.axis; }
+
+// LIGHT_SPHERE and LIGHT_QUAD: area, the emitting area.
+PH_FN vec3 sphereCenter(PH_IN(Light) light) { return light.position; }
+PH_FN float sphereRadius(PH_IN(Light) light) { return light.extent; }
+PH_FN vec3 quadCorner(PH_IN(Light) light) { return light.position; }
+PH_FN vec3 quadEdgeU(PH_IN(Light) light) { return light.vectorU; }
+PH_FN vec3 quadEdgeV(PH_IN(Light) light) { return light.vectorV; }
+PH_FN vec3 quadNormal(PH_IN(Light) light) { return light.axis; }  // unit, the emitting side
+
+// LIGHT_TRIANGLES: emitterFirst and emitterCount, its slice of emissiveTriangles.
+
+// LIGHT_DIRECTIONAL: parallel light over the sphere bounding the scene (Scene::finalize sizes it;
+// power is the flux E·πR² through the sphere's disk).
+PH_FN vec3 directionalDirection(PH_IN(Light) light) { return light.axis; }  // of travel, unit
+PH_FN vec3 directionalIrradiance(PH_IN(Light) light) { return light.vectorU; }  // E on a surface facing it
+PH_FN vec3 boundingCenter(PH_IN(Light) light) { return light.position; }
+PH_FN float boundingRadius(PH_IN(Light) light) { return light.extent; }
+
+// LIGHT_BACKGROUND: the same radiance from every direction.
+PH_FN vec3 backgroundRadiance(PH_IN(Light) light) { return light.vectorU; }
+
+PH_NAMESPACE_END
+
+#endif
