@@ -122,6 +122,9 @@ struct HostArray {
 };
 HostArray sceneArray(const Scene& scene, std::uint32_t binding);
 
+// A light of `type` at `position` emitting `power`, its other fields zero (an isotropic profile).
+Light emptyLight(std::uint32_t type, glm::vec3 position, glm::vec3 power);
+
 // The shared camera for an image of width × height.
 Camera makeCamera(const CameraDesc& desc, std::uint32_t width, std::uint32_t height);
 
