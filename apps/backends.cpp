@@ -1,6 +1,6 @@
 #include "backends.h"
 
-#include "core/error.h"
+#include "core/system/error.h"
 #include "cpu/cpu_backend.h"
 #ifdef PHOTON_HAVE_CUDA
 #include "cuda/cuda_backend.h"

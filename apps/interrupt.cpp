@@ -6,7 +6,7 @@
 #include <atomic>
 #include <cstring>
 
-#include "core/output_file.h"
+#include "core/system/output_file.h"
 
 namespace photon {
 namespace {

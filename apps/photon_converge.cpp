@@ -15,12 +15,12 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/backends.h"
-#include "apps/program.h"
-#include "core/error.h"
-#include "core/image_error.h"
-#include "core/output_file.h"
-#include "core/scene_loader.h"
-#include "core/setting_specs.h"
+#include "core/system/program.h"
+#include "core/system/error.h"
+#include "core/image/image_error.h"
+#include "core/system/output_file.h"
+#include "core/loaders/scene_loader.h"
+#include "core/settings/setting_specs.h"
 
 namespace photon {
 namespace {

@@ -1,7 +1,7 @@
 #include "render_options.h"
 
-#include "core/error.h"
-#include "core/setting_specs.h"
+#include "core/system/error.h"
+#include "core/settings/setting_specs.h"
 
 namespace photon {
 

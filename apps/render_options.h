@@ -1,5 +1,5 @@
 // The render settings on the command line, shared by photon-render and photon-view: one option per
-// setting of core/setting_specs.h, parsed and checked there. Only the options given on the command
+// setting of core/settings/setting_specs.h, parsed and checked there. Only the options given on the command
 // line override the scene file's settings.
 #pragma once
 
@@ -8,8 +8,8 @@
 
 #include <CLI/CLI.hpp>
 
-#include "core/model_loader.h"
-#include "core/settings.h"
+#include "core/loaders/model_loader.h"
+#include "core/settings/settings.h"
 
 namespace photon {
 

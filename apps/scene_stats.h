@@ -4,7 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/scene.h"
+#include "core/scene/scene.h"
 
 namespace photon {
 

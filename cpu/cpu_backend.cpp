@@ -5,7 +5,7 @@
 #include <cstring>
 #include <vector>
 
-#include "core/parallel.h"
+#include "core/system/parallel.h"
 #include "shared/eye_trace.h"
 #include "shared/sppm.h"
 #include "shared/photon_map.h"

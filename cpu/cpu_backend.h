@@ -6,7 +6,7 @@
 
 #include <memory>
 
-#include "core/backend.h"
+#include "core/frame/backend.h"
 
 namespace photon {
 

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "core/error.h"
+#include "core/system/error.h"
 #include "cuda_check.h"
 #include "shared/eye_trace.h"
 #include "shared/gather.h"

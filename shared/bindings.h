@@ -10,7 +10,7 @@
 //   access   RO: read-only everywhere; RW: written by some stage; MAPS and HITS: written by some
 //            stage, read-only in shaders that define PH_PHOTON_MAPS_READONLY or PH_HIT_POINTS_READONLY
 //            (drivers can then serve those loads from read-only caches)
-//   size     how many elements the host allocates (BUFFER_PER_*, sized in core/buffers.cpp)
+//   size     how many elements the host allocates (BUFFER_PER_*, sized in core/frame/buffers.cpp)
 #ifndef PHOTON_SHARED_BINDINGS_H
 #define PHOTON_SHARED_BINDINGS_H
 

@@ -1,6 +1,6 @@
 // Constants and enumerations shared by every backend. Enumerations are plain uint constants so that
 // they mean the same in buffers, in GLSL and in C++; each has a *_COUNT, and the host's enums
-// (core/settings.h) are defined from these values and checked against the counts.
+// (core/settings/settings.h) are defined from these values and checked against the counts.
 #ifndef PHOTON_SHARED_CONSTANTS_H
 #define PHOTON_SHARED_CONSTANTS_H
 

@@ -1,7 +1,7 @@
 // Ray-primitive intersection and the two scene queries every stage needs, the closest hit and
 // "is anything in the way", both through one traversal (traceRay): infinite planes tested one by
 // one, every bounded primitive (sphere, quad, triangle) through a bounding volume hierarchy built on
-// the host (core/bvh.cpp).
+// the host (core/scene/bvh.cpp).
 #ifndef PHOTON_SHARED_INTERSECT_H
 #define PHOTON_SHARED_INTERSECT_H
 

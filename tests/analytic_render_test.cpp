@@ -10,7 +10,7 @@
 #include <cstring>
 
 #include "apps/backends.h"
-#include "core/scene_loader.h"
+#include "core/loaders/scene_loader.h"
 #include "test_util.h"
 
 namespace photon {

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "core/backend.h"
-#include "core/image.h"
+#include "core/frame/backend.h"
+#include "core/image/image.h"
 #include "test_util.h"
 
 namespace photon::test {

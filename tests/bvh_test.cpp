@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <random>
 
-#include "core/scene_loader.h"
+#include "core/loaders/scene_loader.h"
 #include "shared/intersect.h"
 #include "test_util.h"
 

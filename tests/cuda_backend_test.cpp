@@ -9,8 +9,8 @@
 
 #include "apps/backends.h"
 #include "backend_compare.h"
-#include "core/error.h"
-#include "core/scene_loader.h"
+#include "core/system/error.h"
+#include "core/loaders/scene_loader.h"
 #include "cuda/cuda_backend.h"
 
 namespace photon {

@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "core/backend.h"
-#include "core/buffers.h"
-#include "core/median.h"
-#include "core/scene_loader.h"
+#include "core/frame/backend.h"
+#include "core/frame/buffers.h"
+#include "core/frame/median.h"
+#include "core/loaders/scene_loader.h"
 #include "cpu/cpu_backend.h"
 
 namespace photon {

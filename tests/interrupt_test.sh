@@ -94,7 +94,7 @@ else
 fi
 
 # 3. The second signal while the output is being written: the temporary file goes with the
-#    process (core/output_file.h), so that a killed render leaves nothing behind. Where the second
+#    process (core/system/output_file.h), so that a killed render leaves nothing behind. Where the second
 #    signal lands varies (the frame, the write of 24 MiB of PFM, after): the image is whole or
 #    absent either way.
 out=$tmp/big.pfm

@@ -11,7 +11,7 @@
 #include <fstream>
 
 #include "apps/backends.h"
-#include "core/model_loader.h"
+#include "core/loaders/model_loader.h"
 #include "test_util.h"
 #include "tools/mesh_shapes.h"
 

@@ -1,7 +1,7 @@
 // Model loader tests: OBJ + MTL and glTF land in the Scene as docs/scenes.md says (geometry under
 // its transforms, the material table, textures decoded to linear, cameras and lights in their
 // units), and every kind of bad file is one InputError naming the file, the place and the reason.
-#include "core/model_loader.h"
+#include "core/loaders/model_loader.h"
 #include "shared/light_types.h"
 
 #include <gtest/gtest.h>
@@ -21,8 +21,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <meshoptimizer.h>
 
-#include "core/error.h"
-#include "core/image.h"
+#include "core/system/error.h"
+#include "core/image/image.h"
 #include "shared/material.h"
 #include "shared/math.h"
 #include "test_util.h"

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "apps/backends.h"
-#include "core/scene.h"
+#include "core/scene/scene.h"
 #include "shared/bsdf.h"
 #include "shared/intersect.h"
 #include "test_util.h"

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "apps/backends.h"
-#include "core/scene_loader.h"
+#include "core/loaders/scene_loader.h"
 #include "test_util.h"
 
 namespace photon {

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "core/scene.h"
+#include "core/scene/scene.h"
 #include "shared/eye_trace.h"
 
 namespace photon {

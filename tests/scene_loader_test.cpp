@@ -1,6 +1,6 @@
 // Scene loader tests: every scene in scenes/ loads, values land where they belong in the Scene, and
 // each kind of bad input is reported as one line "<source>: <JSON pointer or line/column>: <reason>".
-#include "core/scene_loader.h"
+#include "core/loaders/scene_loader.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <map>
 #include <string>
 
-#include "core/error.h"
+#include "core/system/error.h"
 #include "test_util.h"
 
 namespace photon {

@@ -10,10 +10,10 @@
 #include <string>
 
 #include "apps/backends.h"
-#include "core/error.h"
-#include "core/image_error.h"
-#include "core/scene_loader.h"
-#include "core/setting_specs.h"
+#include "core/system/error.h"
+#include "core/image/image_error.h"
+#include "core/loaders/scene_loader.h"
+#include "core/settings/setting_specs.h"
 #include "backend_compare.h"
 #include "test_util.h"
 

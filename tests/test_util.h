@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
-#include "core/estimator_policy.h"
-#include "core/frame_setup.h"
-#include "core/image.h"
-#include "core/scene.h"
+#include "core/frame/estimator_policy.h"
+#include "core/frame/frame_setup.h"
+#include "core/image/image.h"
+#include "core/scene/scene.h"
 #include "shared/bindings.h"
 
 namespace photon::test {

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "core/scene_loader.h"
+#include "core/loaders/scene_loader.h"
 #include "viewer/camera_controller.h"
 #include "viewer/light_editor.h"
 #include "shared/light_types.h"

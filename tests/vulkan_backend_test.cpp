@@ -22,8 +22,8 @@
 #include <filesystem>
 
 #include "apps/backends.h"
-#include "core/error.h"
-#include "core/scene_loader.h"
+#include "core/system/error.h"
+#include "core/loaders/scene_loader.h"
 #include "backend_compare.h"
 #include "test_util.h"
 #include "vulkan/context.h"

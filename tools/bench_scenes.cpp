@@ -4,7 +4,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "core/scene_loader.h"
+#include "core/loaders/scene_loader.h"
 #include "mesh_shapes.h"
 
 namespace photon::tools {

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "core/mesh.h"
+#include "core/scene/mesh.h"
 
 namespace photon::tools {
 

@@ -6,10 +6,10 @@
 
 #include <CLI/CLI.hpp>
 
-#include "apps/program.h"
-#include "core/error.h"
-#include "core/json_node.h"
-#include "core/output_file.h"
+#include "core/system/program.h"
+#include "core/system/error.h"
+#include "core/loaders/json_node.h"
+#include "core/system/output_file.h"
 #include "mesh_shapes.h"
 #include "glb_writer.h"
 

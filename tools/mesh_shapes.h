@@ -4,7 +4,7 @@
 
 #include <cstdint>
 
-#include "core/mesh.h"
+#include "core/scene/mesh.h"
 
 namespace photon::tools {
 

@@ -5,7 +5,7 @@
 
 #include <glm/glm.hpp>
 
-#include "core/scene.h"
+#include "core/scene/scene.h"
 
 namespace photon::viewer {
 

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "core/median.h"
+#include "core/frame/median.h"
 #include "vulkan/check.h"
 
 namespace photon::viewer {

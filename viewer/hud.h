@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "core/backend.h"
+#include "core/frame/backend.h"
 #include "frame_log.h"
 #include "light_editor.h"
 #include "state.h"

@@ -6,7 +6,7 @@
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_vulkan.h>
 
-#include "core/error.h"
+#include "core/system/error.h"
 #include "vulkan/check.h"
 #include "vulkan/memory.h"
 

@@ -1,6 +1,6 @@
 #include "offscreen.h"
 
-#include "core/error.h"
+#include "core/system/error.h"
 #include "vulkan/check.h"
 #include "vulkan/memory.h"
 

@@ -4,9 +4,9 @@
 #include <cstdint>
 #include <string>
 
-#include "core/model_loader.h"
-#include "core/scene.h"
-#include "core/settings.h"
+#include "core/loaders/model_loader.h"
+#include "core/scene/scene.h"
+#include "core/settings/settings.h"
 
 namespace photon::viewer {
 

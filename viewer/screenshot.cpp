@@ -4,8 +4,8 @@
 #include <vector>
 
 
-#include "core/error.h"
-#include "core/image.h"
+#include "core/system/error.h"
+#include "core/image/image.h"
 
 namespace photon::viewer {
 namespace {

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "core/settings.h"
+#include "core/settings/settings.h"
 #include "options.h"
 
 namespace photon::viewer {

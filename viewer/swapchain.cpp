@@ -3,7 +3,7 @@
 
 #include <algorithm>
 
-#include "core/error.h"
+#include "core/system/error.h"
 #include "vulkan/check.h"
 
 namespace photon::viewer {

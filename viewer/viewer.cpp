@@ -7,8 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/error.h"
-#include "core/output_file.h"
+#include "core/system/error.h"
+#include "core/system/output_file.h"
 #include "hud.h"
 #include "vulkan/check.h"
 #include "vulkan/objects.h"

@@ -7,7 +7,7 @@
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
 
-#include "core/error.h"
+#include "core/system/error.h"
 #include "vulkan/check.h"
 
 namespace photon::viewer {

@@ -5,7 +5,7 @@
 #include <algorithm>
 
 #include "check.h"
-#include "core/error.h"
+#include "core/system/error.h"
 #include "glsl/dispatch.h"
 #include "objects.h"
 

@@ -14,7 +14,7 @@
 #include "buffer_plan.h"
 #include "scan.h"
 #include "context.h"
-#include "core/backend.h"
+#include "core/frame/backend.h"
 #include "memory.h"
 #include "photon_sort.h"
 #include "pipelines.h"

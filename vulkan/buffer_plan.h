@@ -1,5 +1,5 @@
 // What the Vulkan device allows the buffers of shared/bindings.h (the plan itself is core's,
-// core/buffers.h), and how each buffer is used.
+// core/frame/buffers.h), and how each buffer is used.
 #pragma once
 
 #include <cstdint>
@@ -7,7 +7,7 @@
 #include <vulkan/vulkan.h>
 
 #include "context.h"
-#include "core/buffers.h"
+#include "core/frame/buffers.h"
 
 namespace photon::vk {
 

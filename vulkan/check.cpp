@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "core/error.h"
+#include "core/system/error.h"
 
 namespace photon::vk {
 

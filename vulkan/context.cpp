@@ -9,7 +9,7 @@
 #include <cstring>
 
 #include "check.h"
-#include "core/error.h"
+#include "core/system/error.h"
 #include "shared/bindings.h"
 
 namespace photon::vk {

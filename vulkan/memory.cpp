@@ -7,7 +7,7 @@
 #include <utility>
 
 #include "check.h"
-#include "core/error.h"
+#include "core/system/error.h"
 
 namespace photon::vk {
 

@@ -9,7 +9,7 @@
 
 #include <vulkan/vulkan.h>
 
-#include "core/frame_setup.h"
+#include "core/frame/frame_setup.h"
 #include "pipelines.h"
 
 namespace photon::vk {

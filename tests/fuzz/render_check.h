@@ -9,9 +9,9 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "core/image.h"
-#include "core/scene.h"
-#include "core/settings.h"
+#include "core/image/image.h"
+#include "core/scene/scene.h"
+#include "core/settings/settings.h"
 #include "cpu/cpu_backend.h"
 
 namespace photon::fuzz {

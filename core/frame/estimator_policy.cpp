@@ -1,0 +1,151 @@
+#include "core/frame/estimator_policy.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+#include "shared/progressive.h"
+
+namespace photon {
+namespace {
+
+// Each photon map's rules, a value per map.
+
+// Automatic radii in footprints (of the median footprint) for the single-frame estimators.
+constexpr float kAutoRadiusFootprints[MAP_COUNT] = {8.0f, 4.0f};
+// Where no footprint could be measured: the global map's radius is 1% of the scene's diagonal, and
+// every other map's its share of it.
+constexpr float kFallbackShare[MAP_COUNT] = {1.0f, 0.5f};
+
+// sppm starts each pixel at its own footprint times a number of footprints chosen so that a
+// first disc holds about this many photons if they spread over the image (clamped to the range
+// below): few enough to keep detail, enough that the first frames are not all noise.
+constexpr float kSppmFirstPhotons[MAP_COUNT] = {64.0f, 16.0f};
+constexpr float kSppmFirstFootprintsMin[MAP_COUNT] = {1.5f, 1.0f};
+constexpr float kSppmFirstFootprintsMax[MAP_COUNT] = {16.0f, 8.0f};
+
+// sppm: a frame's paths of a map count as one photon pass per SPPM_BATCH_PATHS (sppm.h).
+std::uint32_t sppmPasses(std::uint32_t paths) {
+    return std::clamp<std::uint32_t>((paths + SPPM_BATCH_PATHS / 2) / SPPM_BATCH_PATHS, 1u, SPPM_BATCHES_MAX);
+}
+
+}  // namespace
+
+FrameRadii firstFrameRadii(const Scene& scene, const RenderSettings& settings, const Footprints& footprints,
+                           const PhotonBudget& budget) {
+    FrameRadii r;
+    // Photons of each map per frame: the caustic map's come from the caustic pass, or are the few
+    // of the global pass that make caustic paths.
+    std::uint32_t paths[MAP_COUNT] = {budget.globalPaths, budget.splitCaustics ? budget.causticPaths : budget.globalPaths};
+    double photons[MAP_COUNT] = {double(budget.globalPaths),
+                                 budget.splitCaustics ? double(budget.causticPaths) : 0.1 * budget.globalPaths};
+    for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
+        r.sppm[m].batches = sppmPasses(paths[m]);
+    }
+    float fallback = 0.01f * scene.diagonal();
+    if (settings.estimator == Estimator::Sppm) {
+        double pixels = double(settings.width) * double(settings.height);
+        for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
+            float given = mapRadius(settings, m);
+            double perPixel = std::max(photons[m], 1.0) / pixels;
+            double f = std::sqrt(double(kSppmFirstPhotons[m]) / (3.14159265358979 * perPixel));
+            r.sppm[m].firstFootprints =
+                float(std::clamp(f, double(kSppmFirstFootprintsMin[m]), double(kSppmFirstFootprintsMax[m])));
+            r.sppm[m].firstRadius = given;
+            float unseen = m == MAP_GLOBAL ? fallback : kFallbackShare[m] * fallback;
+            r.radius[m] = given > 0.0f ? given : footprints.any ? footprints.median * r.sppm[m].firstFootprints : unseen;
+        }
+        return r;
+    }
+    for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
+        float given = mapRadius(settings, m);
+        // Without footprints a map falls back to its share of the global map's radius.
+        float unseen = m == MAP_GLOBAL ? fallback : kFallbackShare[m] * r.radius[MAP_GLOBAL];
+        r.radius[m] = given > 0.0f ? given : footprints.any ? kAutoRadiusFootprints[m] * footprints.median : unseen;
+    }
+    if (settings.grid == GridKind::Bounded) {
+        // An automatic radius stays within what the bounded grid's query reaches (a given one is
+        // refused by validateForScene instead).
+        glm::vec3 extent = scene.boundsMax - scene.boundsMin;
+        float cell = std::max({extent.x, extent.y, extent.z}) / float(settings.gridResolution);
+        for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
+            if (mapRadius(settings, m) <= 0.0f) {
+                r.radius[m] = std::min(r.radius[m], kBoundedGridReachCells * cell);
+            }
+        }
+    }
+    return r;
+}
+
+FrameRadii EstimatorPolicy::frame(const RenderSettings& settings, std::uint32_t accumulated) {
+    switch (settings.estimator) {
+        case Estimator::Sppm:
+            if (accumulated == 0) {
+                current_ = first_;
+            }
+            return current_;
+        case Estimator::Progressive: {
+            FrameRadii r = first_;
+            for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
+                r.radius[m] = progressiveRadius(first_.radius[m], settings.alpha, accumulated);
+            }
+            return r;
+        }
+        case Estimator::Cell:
+        case Estimator::Radius:
+        case Estimator::Knn: return first_;
+    }
+    throw std::logic_error("EstimatorPolicy: unknown estimator " + std::to_string(int(settings.estimator)));
+}
+
+void EstimatorPolicy::observe(const RenderSettings& settings, const std::uint32_t* counters) {
+    if (settings.estimator != Estimator::Sppm) {
+        return;
+    }
+    // The next frame's cells follow the median radius of the pixels that have photons, and the
+    // largest (sppmCellRadius).
+    for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
+        float largest;
+        std::memcpy(&largest, &counters[COUNTER_SPPM_RADIUS + m], sizeof largest);
+        float r = sppmCellRadius(counters + COUNTER_SPPM_HISTOGRAM + m * SPPM_RADIUS_BINS, largest);
+        if (r > 0.0f) {
+            current_.radius[m] = r;
+        }
+    }
+}
+
+float sppmCellRadius(const std::uint32_t* histogram, float largest) {
+    float median = sppmMedianRadius(histogram);
+    if (median == 0.0f) {
+        return 0.0f;
+    }
+    // A pixel's radius (finite: the counter holds float bits of one) reaches at most
+    // kSppmCellReach cells from its centre.
+    if (std::isfinite(largest) && largest > 0.0f) {
+        median = std::max(median, largest / kSppmCellReach);
+    }
+    return median;
+}
+
+float sppmMedianRadius(const std::uint32_t* histogram) {
+    std::uint64_t total = 0;
+    for (std::uint32_t b = 0; b < SPPM_RADIUS_BINS; ++b) {
+        total += histogram[b];
+    }
+    if (total == 0) {
+        return 0.0f;
+    }
+    std::uint64_t seen = 0;
+    for (std::uint32_t b = 0; b < SPPM_RADIUS_BINS; ++b) {
+        seen += histogram[b];
+        if (2 * seen >= total) {
+            // Bin b holds radii in [2^e, 2^(e + 1)), e = b - SPPM_RADIUS_BINS / 2.
+            return std::ldexp(1.0f, int(b) - int(SPPM_RADIUS_BINS / 2) + 1);
+        }
+    }
+    return 0.0f;
+}
+
+}  // namespace photon

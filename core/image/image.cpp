@@ -1,0 +1,246 @@
+#include "core/image/image.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include <stb_image_write.h>
+#include <tinyexr.h>
+
+#include "core/system/error.h"
+#include "core/system/output_file.h"
+#include "shared/tonemap.h"
+
+namespace photon {
+namespace {
+
+std::string lowerExtension(const std::string& path) {
+    auto dot = path.find_last_of('.');
+    if (dot == std::string::npos) {
+        return "";
+    }
+    std::string ext = path.substr(dot + 1);
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+}
+
+void appendBytes(void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data), std::size_t(size));
+}
+
+std::string encodeRgb8Png(const unsigned char* rgb, std::uint32_t width, std::uint32_t height) {
+    std::string png;
+    if (!stbi_write_png_to_func(appendBytes, &png, int(width), int(height), 3, rgb, int(width) * 3)) {
+        throw RuntimeError("cannot encode the PNG image");
+    }
+    return png;
+}
+
+std::string encodePng(const Image& image, float exposure, Tonemap curve) {
+    std::vector<unsigned char> bytes(std::size_t(image.width) * image.height * 3);
+    float scale = std::exp2(exposure);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+        glm::vec3 c = tonemap(glm::vec3(image.pixels[i]), scale, static_cast<std::uint32_t>(curve));
+        for (int k = 0; k < 3; ++k) {
+            bytes[3 * i + k] = static_cast<unsigned char>(std::lround(c[k] * 255.0f));
+        }
+    }
+    return encodeRgb8Png(bytes.data(), image.width, image.height);
+}
+
+// OpenEXR, 32-bit float RGB, ZIP-compressed (as tinyexr's SaveEXR, but into memory).
+std::string encodeExr(const Image& image) {
+    std::size_t n = image.pixels.size();
+    std::vector<float> channels[3];  // B, G, R: the order EXR viewers expect
+    for (int c = 0; c < 3; ++c) {
+        channels[c].resize(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            channels[c][i] = image.pixels[i][2 - c];
+        }
+    }
+    float* planes[3] = {channels[0].data(), channels[1].data(), channels[2].data()};
+    EXRImage exr;
+    InitEXRImage(&exr);
+    exr.num_channels = 3;
+    exr.images = reinterpret_cast<unsigned char**>(planes);
+    exr.width = int(image.width);
+    exr.height = int(image.height);
+    EXRHeader header;
+    InitEXRHeader(&header);
+    header.compression_type = image.width < 16 && image.height < 16 ? TINYEXR_COMPRESSIONTYPE_NONE : TINYEXR_COMPRESSIONTYPE_ZIP;
+    EXRChannelInfo info[3] = {};
+    const char* names[3] = {"B", "G", "R"};
+    int types[3] = {TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT};
+    for (int c = 0; c < 3; ++c) {
+        std::strncpy(info[c].name, names[c], sizeof(info[c].name) - 1);
+    }
+    header.num_channels = 3;
+    header.channels = info;
+    header.pixel_types = types;
+    header.requested_pixel_types = types;
+    unsigned char* memory = nullptr;
+    const char* err = nullptr;
+    std::size_t size = SaveEXRImageToMemory(&exr, &header, &memory, &err);
+    if (size == 0) {
+        std::string reason = err ? err : "unknown error";
+        FreeEXRErrorMessage(err);
+        throw RuntimeError("cannot encode the EXR image: " + reason);
+    }
+    std::string bytes(reinterpret_cast<const char*>(memory), size);
+    std::free(memory);
+    return bytes;
+}
+
+// Portable float map: "PF", size, scale (negative: little-endian), rows bottom to top.
+std::string encodePfm(const Image& image) {
+    std::string bytes = "PF\n" + std::to_string(image.width) + " " + std::to_string(image.height) + "\n-1.0\n";
+    std::vector<float> row(std::size_t(image.width) * 3);
+    for (std::uint32_t y = image.height; y-- > 0;) {
+        for (std::uint32_t x = 0; x < image.width; ++x) {
+            for (int k = 0; k < 3; ++k) {
+                row[3 * x + k] = image.at(x, y)[k];
+            }
+        }
+        bytes.append(reinterpret_cast<const char*>(row.data()), row.size() * sizeof(float));
+    }
+    return bytes;
+}
+
+Image readPfm(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        throw InputError(path + ": cannot open file");
+    }
+    std::string magic;
+    long w = 0;
+    long h = 0;
+    float scale = 0.0f;
+    in >> magic >> w >> h >> scale;
+    in.get();
+    if (magic != "PF" || w <= 0 || h <= 0 || w > 65536 || h > 65536 || scale >= 0.0f) {
+        throw InputError(path + ": not a little-endian RGB PFM file");
+    }
+    Image image{std::uint32_t(w), std::uint32_t(h)};
+    std::vector<float> row(std::size_t(w) * 3);
+    for (long y = h; y-- > 0;) {
+        in.read(reinterpret_cast<char*>(row.data()), std::streamsize(row.size() * sizeof(float)));
+        for (long x = 0; x < w; ++x) {
+            image.at(std::uint32_t(x), std::uint32_t(y)) = glm::vec4(row[3 * x], row[3 * x + 1], row[3 * x + 2], 1.0f);
+        }
+    }
+    if (!in) {
+        throw InputError(path + ": truncated PFM file");
+    }
+    return image;
+}
+
+Image readExr(const std::string& path) {
+    float* rgba = nullptr;
+    int w = 0;
+    int h = 0;
+    const char* err = nullptr;
+    if (LoadEXR(&rgba, &w, &h, path.c_str(), &err) != TINYEXR_SUCCESS) {
+        std::string reason = err ? err : "unknown error";
+        FreeEXRErrorMessage(err);
+        throw InputError(path + ": cannot read EXR: " + reason);
+    }
+    Image image{std::uint32_t(w), std::uint32_t(h)};
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+        image.pixels[i] = glm::vec4(rgba[4 * i], rgba[4 * i + 1], rgba[4 * i + 2], 1.0f);
+    }
+    std::free(rgba);
+    return image;
+}
+
+}  // namespace
+
+ImageFormat imageFormatFor(const std::string& path) {
+    std::string ext = lowerExtension(path);
+    if (ext == "png") {
+        return ImageFormat::Png;
+    }
+    if (ext == "exr") {
+        return ImageFormat::Exr;
+    }
+    if (ext == "pfm") {
+        return ImageFormat::Pfm;
+    }
+    throw InputError(path + ": unknown image format (use .png, .exr or .pfm)");
+}
+
+void writeImage(const std::string& path, const Image& image, float exposure, Tonemap curve) {
+    if (!allFinite(image)) {
+        throw RuntimeError(path + ": the image holds values that are not finite; nothing was written");
+    }
+    std::string bytes;
+    switch (imageFormatFor(path)) {
+        case ImageFormat::Png: bytes = encodePng(image, exposure, curve); break;
+        case ImageFormat::Exr: bytes = encodeExr(image); break;
+        case ImageFormat::Pfm: bytes = encodePfm(image); break;
+    }
+    writeOutputFile(path, bytes, "image");
+}
+
+void writeRgb8Png(const std::string& path, const unsigned char* rgb, std::uint32_t width, std::uint32_t height) {
+    writeOutputFile(path, encodeRgb8Png(rgb, width, height), "image");
+}
+
+Image readImage(const std::string& path) {
+    switch (imageFormatFor(path)) {
+        case ImageFormat::Exr:
+            return readExr(path);
+        case ImageFormat::Pfm:
+            return readPfm(path);
+        default:
+            throw InputError(path + ": only .exr and .pfm images can be read");
+    }
+}
+
+double relativeRmse(const Image& a, const Image& reference) {
+    if (a.width != reference.width || a.height != reference.height) {
+        return INFINITY;
+    }
+    double num = 0.0;
+    double den = 0.0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+        for (int k = 0; k < 3; ++k) {
+            double d = double(a.pixels[i][k]) - double(reference.pixels[i][k]);
+            num += d * d;
+            den += double(reference.pixels[i][k]) * double(reference.pixels[i][k]);
+        }
+    }
+    return den > 0.0 ? std::sqrt(num / den) : std::sqrt(num);
+}
+
+double meanLuminance(const Image& image) {
+    double sum = 0.0;
+    for (const glm::vec4& p : image.pixels) {
+        sum += 0.2126 * p.x + 0.7152 * p.y + 0.0722 * p.z;
+    }
+    return image.pixels.empty() ? 0.0 : sum / double(image.pixels.size());
+}
+
+bool allFinite(const Image& image) {
+    return std::all_of(image.pixels.begin(), image.pixels.end(), [](const glm::vec4& p) {
+        return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+    });
+}
+
+Image differenceImage(const Image& a, const Image& b) {
+    Image d(a.width, a.height);
+    float largest = 0.0f;
+    for (std::size_t i = 0; i < d.pixels.size() && i < b.pixels.size(); ++i) {
+        d.pixels[i] = glm::abs(a.pixels[i] - b.pixels[i]);
+        largest = std::max({largest, d.pixels[i].x, d.pixels[i].y, d.pixels[i].z});
+    }
+    for (glm::vec4& p : d.pixels) {
+        p = largest > 0.0f ? p / largest : p;
+        p.w = 1.0f;
+    }
+    return d;
+}
+
+}  // namespace photon

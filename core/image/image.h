@@ -1,0 +1,48 @@
+// Linear RGB images and their files: PNG (tone-mapped sRGB), OpenEXR and PFM (linear radiance).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/settings/settings.h"
+
+namespace photon {
+
+struct Image {
+    std::uint32_t width = 0;
+    std::uint32_t height = 0;
+    std::vector<glm::vec4> pixels;  // row-major from the top; rgb = radiance, a unused
+
+    Image() = default;
+    Image(std::uint32_t w, std::uint32_t h) : width(w), height(h), pixels(std::size_t(w) * h, glm::vec4(0.0f)) {}
+    glm::vec4& at(std::uint32_t x, std::uint32_t y) { return pixels[std::size_t(y) * width + x]; }
+    const glm::vec4& at(std::uint32_t x, std::uint32_t y) const { return pixels[std::size_t(y) * width + x]; }
+};
+
+enum class ImageFormat { Png, Exr, Pfm };
+
+// The format for a file name's extension; throws InputError for anything else.
+ImageFormat imageFormatFor(const std::string& path);
+
+// Writes by extension, whole or not at all (core/system/output_file.h). PNG applies exposure (stops) and
+// the tone curve; EXR and PFM are linear. Throws RuntimeError if the file cannot be written, with
+// the OS's reason.
+void writeImage(const std::string& path, const Image& image, float exposure, Tonemap tonemap);
+
+// An 8-bit RGB picture (display values) as PNG, whole or not at all.
+void writeRgb8Png(const std::string& path, const unsigned char* rgb, std::uint32_t width, std::uint32_t height);
+
+// Reads a PFM or EXR file (linear); throws InputError.
+Image readImage(const std::string& path);
+
+// Relative RMSE of a against the reference: sqrt(Σ|a-ref|²) / sqrt(Σ|ref|²) over rgb.
+double relativeRmse(const Image& a, const Image& reference);
+double meanLuminance(const Image& image);
+bool allFinite(const Image& image);
+// |a - b| scaled so that the largest difference is 1, for looking at.
+Image differenceImage(const Image& a, const Image& b);
+
+}  // namespace photon

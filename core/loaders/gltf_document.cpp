@@ -1,0 +1,189 @@
+#include "core/loaders/gltf_document.h"
+
+#include <cstdint>
+#include <cstring>
+
+#include <nlohmann/json.hpp>
+
+#include "core/system/error.h"
+
+namespace photon {
+namespace {
+
+using json = nlohmann::json;
+
+constexpr std::uint32_t kJsonChunk = 0x4E4F534Au;  // "JSON", little-endian
+
+std::uint32_t word(const std::string& bytes, std::size_t at) {
+    std::uint32_t w;
+    std::memcpy(&w, bytes.data() + at, 4);
+    return w;
+}
+
+void putWord(std::string& out, std::uint32_t w) { out.append(reinterpret_cast<const char*>(&w), 4); }
+
+// glTF 1.0 says so in asset.version ("1.0", or the number 1), and keeps its objects in
+// dictionaries where glTF 2.0 has arrays.
+bool isGltf1(const json& root) {
+    auto asset = root.find("asset");
+    if (asset != root.end() && asset->is_object()) {
+        auto version = asset->find("version");
+        if (version != asset->end() && version->is_string()) {
+            const std::string& v = version->get_ref<const std::string&>();
+            return v == "1" || v.rfind("1.", 0) == 0;
+        }
+        if (version != asset->end() && version->is_number()) {
+            return version->get<double>() >= 1.0 && version->get<double>() < 2.0;
+        }
+    }
+    for (const char* key : {"meshes", "nodes", "accessors", "buffers"}) {
+        auto it = root.find(key);
+        if (it != root.end() && it->is_object()) {
+            return true;
+        }
+    }
+    return false;
+}
+
+bool uses(const json& root, const char* extension) {
+    auto used = root.find("extensionsUsed");
+    if (used == root.end() || !used->is_array()) {
+        return false;
+    }
+    for (const json& e : *used) {
+        if (e.is_string() && e.get_ref<const std::string&>() == extension) {
+            return true;
+        }
+    }
+    return false;
+}
+
+const json* extension(const json& object, const char* name) {
+    if (!object.is_object()) {
+        return nullptr;
+    }
+    auto extensions = object.find("extensions");
+    if (extensions == object.end() || !extensions->is_object()) {
+        return nullptr;
+    }
+    auto it = extensions->find(name);
+    return it == extensions->end() ? nullptr : &*it;
+}
+
+// A fallback buffer stands for the decompressed views and has no bytes of its own: a one-byte
+// data URI lets tinygltf parse it; the loader never reads it.
+bool replaceFallbackBuffers(json& root, std::set<int>& fallbacks) {
+    auto buffers = root.find("buffers");
+    if (buffers == root.end() || !buffers->is_array()) {
+        return false;
+    }
+    bool changed = false;
+    for (std::size_t i = 0; i < buffers->size(); ++i) {
+        json& b = (*buffers)[i];
+        const json* meshopt = extension(b, "EXT_meshopt_compression");
+        if (meshopt == nullptr || !meshopt->is_object() || b.contains("uri")) {
+            continue;
+        }
+        auto fallback = meshopt->find("fallback");
+        if (fallback == meshopt->end() || !fallback->is_boolean() || !fallback->get<bool>()) {
+            continue;
+        }
+        b["byteLength"] = 1;
+        b["uri"] = "data:application/octet-stream;base64,AA==";
+        fallbacks.insert(int(i));
+        changed = true;
+    }
+    return changed;
+}
+
+// A Draco primitive's faces come from its compressed buffer view: its "indices" accessor only
+// describes them (and may have no buffer view, which tinygltf refuses).
+bool dropDracoIndices(json& root) {
+    auto meshes = root.find("meshes");
+    if (meshes == root.end() || !meshes->is_array()) {
+        return false;
+    }
+    bool changed = false;
+    for (json& mesh : *meshes) {
+        if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) {
+            continue;
+        }
+        for (json& p : mesh["primitives"]) {
+            if (extension(p, "KHR_draco_mesh_compression") != nullptr && p.is_object() && p.contains("indices")) {
+                p.erase("indices");
+                changed = true;
+            }
+        }
+    }
+    return changed;
+}
+
+// The GLB container again around new JSON, with the chunks after the JSON chunk as they were.
+std::string rebuildGlb(const std::string& bytes, std::size_t jsonEnd, std::string text) {
+    while (text.size() % 4 != 0) {
+        text += ' ';
+    }
+    std::string rest = bytes.substr(std::min(jsonEnd, bytes.size()));
+    std::string out;
+    putWord(out, word(bytes, 0));
+    putWord(out, 2);
+    putWord(out, std::uint32_t(12 + 8 + text.size() + rest.size()));
+    putWord(out, std::uint32_t(text.size()));
+    putWord(out, kJsonChunk);
+    return out + text + rest;
+}
+
+}  // namespace
+
+GltfDocument prepareGltf(const std::string& path, const std::string& bytes) {
+    GltfDocument doc;
+    doc.bytes = bytes;
+    doc.binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
+    std::string text = bytes;
+    std::size_t jsonEnd = 0;
+    if (doc.binary) {
+        if (bytes.size() < 20) {
+            return doc;  // tinygltf says what is wrong with it
+        }
+        std::uint32_t version = word(bytes, 4);
+        if (version == 1) {
+            throw InputError(path + ": a glTF 1.0 binary file; Photon reads glTF 2.0");
+        }
+        if (version != 2) {
+            throw InputError(path + ": glTF binary version " + std::to_string(version) + "; Photon reads version 2");
+        }
+        std::uint32_t length = word(bytes, 12);
+        if (word(bytes, 16) != kJsonChunk || length > bytes.size() - 20) {
+            return doc;
+        }
+        text = bytes.substr(20, length);
+        jsonEnd = 20 + std::size_t(length);
+        // tinygltf 2.7 checks the binary chunk against the file's length without the chunk's own
+        // 8-byte header, so a chunk that claims to end the file is read 8 bytes past its end.
+        if (jsonEnd + 8 <= bytes.size() && jsonEnd + 8 + std::size_t(word(bytes, jsonEnd)) > bytes.size()) {
+            throw InputError(path + ": the binary chunk of " + std::to_string(word(bytes, jsonEnd)) +
+                             " bytes extends beyond the file");
+        }
+    }
+    json root = json::parse(text, nullptr, false);
+    if (root.is_discarded() || !root.is_object()) {
+        return doc;  // tinygltf reports the JSON error with its place
+    }
+    if (isGltf1(root)) {
+        throw InputError(path + ": a glTF 1.0 file; Photon reads glTF 2.0");
+    }
+    bool changed = false;
+    if (uses(root, "EXT_meshopt_compression")) {
+        changed |= replaceFallbackBuffers(root, doc.fallbackBuffers);
+    }
+    if (uses(root, "KHR_draco_mesh_compression")) {
+        changed |= dropDracoIndices(root);
+    }
+    if (changed) {
+        std::string rewritten = root.dump(-1, ' ', false, json::error_handler_t::replace);
+        doc.bytes = doc.binary ? rebuildGlb(bytes, jsonEnd, std::move(rewritten)) : std::move(rewritten);
+    }
+    return doc;
+}
+
+}  // namespace photon

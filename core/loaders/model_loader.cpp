@@ -1,0 +1,161 @@
+#include "core/loaders/model_loader.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+
+#include "core/system/error.h"
+#include "core/system/input_file.h"
+
+namespace photon {
+namespace {
+
+std::string lowerExtension(const std::string& path) {
+    std::size_t dot = path.find_last_of('.');
+    std::size_t slash = path.find_last_of('/');
+    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) {
+        return "";
+    }
+    std::string ext = path.substr(dot + 1);
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+}
+
+}  // namespace
+
+std::string folderOf(const std::string& path) {
+    std::size_t slash = path.find_last_of('/');
+    return slash == std::string::npos ? "" : path.substr(0, slash + 1);
+}
+
+std::string namedFile(const std::string& folder, const std::string& name) {
+    std::string file = name;
+    std::replace(file.begin(), file.end(), '\\', '/');
+    if (file.empty() || file[0] != '/') {
+        file = folder + file;
+    }
+    return std::filesystem::path(file).lexically_normal().generic_string();
+}
+
+namespace {
+
+// Whether `file` lies in `folder`'s tree once both are absolute with every symbolic link
+// followed: a comparison of path components, so that /models/a is not taken to be inside
+// /models/ab.
+bool inside(const std::string& folder, const std::string& file) {
+    namespace fs = std::filesystem;
+    std::error_code error;
+    fs::path root = fs::weakly_canonical(fs::absolute(folder.empty() ? "." : folder, error), error);
+    if (error) {
+        return false;
+    }
+    fs::path target = fs::weakly_canonical(fs::absolute(file, error), error);
+    if (error) {
+        return false;
+    }
+    auto t = target.begin();
+    for (const fs::path& part : root) {
+        if (part.empty()) {
+            continue;  // a trailing separator
+        }
+        if (t == target.end() || *t != part) {
+            return false;
+        }
+        ++t;
+    }
+    return true;
+}
+
+}  // namespace
+
+void checkNamedFile(const std::string& modelPath, const std::string& file, const char* what, const PathPolicy& paths) {
+    if (!paths.allowOutside && !inside(folderOf(modelPath), file)) {
+        throw InputError(modelPath + ": " + what + " " + quote(file) +
+                         " lies outside the model's folder (--allow-outside-paths reads it)");
+    }
+}
+
+FileReader defaultFileReader() {
+    return [](const std::string& path, const char* what) { return readInputFile(path, kModelFileLimit, what); };
+}
+
+bool isModelFile(const std::string& path) {
+    std::string ext = lowerExtension(path);
+    return ext == "obj" || ext == "gltf" || ext == "glb";
+}
+
+ModelExtras addModel(Scene& scene, const std::string& path, const std::string& bytes, const ModelOptions& options,
+                     const FileReader& read) {
+    std::string ext = lowerExtension(path);
+    std::size_t triangles = scene.triangles.size();
+    std::uint64_t dropped = scene.droppedTriangles;
+    ModelExtras extras;
+    if (ext == "obj") {
+        extras = addObjModel(scene, path, bytes, options, read);
+    } else if (ext == "gltf" || ext == "glb") {
+        extras = addGltfModel(scene, path, bytes, options, read);
+    } else {
+        throw InputError(path + ": not a model file Photon reads (.obj, .gltf, .glb)");
+    }
+    // A model that brings nothing to render is an error, not a black image (or, in a scene of
+    // nothing else, an automatic radius of 0): whatever the loader says about why.
+    if (scene.triangles.size() == triangles) {
+        std::uint64_t lost = scene.droppedTriangles - dropped;
+        throw InputError(path + (lost > 0 ? ": no triangles: all " + std::to_string(lost) + " have no area or are not finite"
+                                          : std::string(": no triangles to render")));
+    }
+    return extras;
+}
+
+ModelExtras addModelFile(Scene& scene, const std::string& path, const ModelOptions& options) {
+    FileReader read = defaultFileReader();
+    return addModel(scene, path, read(path, "model file"), options, read);
+}
+
+Scene loadModelScene(const std::string& path, const PathPolicy& paths) {
+    FileReader read = defaultFileReader();
+    return loadModelScene(path, read(path, "model file"), read, paths);
+}
+
+Scene loadModelScene(const std::string& path, const std::string& bytes, const FileReader& read, const PathPolicy& paths) {
+    Scene scene;
+    std::size_t slash = path.find_last_of('/');
+    scene.name = slash == std::string::npos ? path : path.substr(slash + 1);
+    ModelOptions options;
+    options.cameraAndLights = true;
+    options.paths = paths;
+    ModelExtras extras = addModel(scene, path, bytes, options, read);
+    // The camera, if the file has none, frames the bounds: from the front, a little above, the
+    // bounding sphere filling the vertical field of view.
+    scene.finalize();
+    glm::vec3 centre = 0.5f * (scene.boundsMin + scene.boundsMax);
+    float radius = std::max(0.5f * glm::length(scene.boundsMax - scene.boundsMin), 1e-6f);
+    if (extras.hasCamera) {
+        scene.camera = extras.camera;
+    } else {
+        scene.camera.fovY = 40.0f;
+        float distance = radius / std::sin(0.5f * glm::radians(scene.camera.fovY)) * 1.05f;
+        scene.camera.position = centre + glm::normalize(glm::vec3(0.35f, 0.3f, 1.0f)) * distance;
+        scene.camera.lookAt = centre;
+        scene.camera.up = glm::vec3(0.0f, 1.0f, 0.0f);
+    }
+    if (extras.lights == 0 && scene.lights.empty()) {
+        // The sun over the camera's left shoulder, and a dimmer one from the camera itself: the
+        // first alone lit the far side of flat models seen at an angle (the camera saw black),
+        // the second lights every face that faces the camera.
+        glm::vec3 forward = glm::normalize(scene.camera.lookAt - scene.camera.position);
+        glm::vec3 side = glm::cross(forward, scene.camera.up);
+        if (!(glm::length(side) > 1e-6f)) {  // a glTF camera looking along its up vector
+            side = glm::cross(forward, std::abs(forward.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, 1));
+        }
+        glm::vec3 right = glm::normalize(side);
+        glm::vec3 up = glm::cross(right, forward);
+        scene.addDirectionalLight(glm::normalize(forward + 0.6f * right - 1.2f * up), glm::vec3(3.0f));
+        scene.addDirectionalLight(forward, glm::vec3(1.0f));
+    }
+    scene.finalize();
+    return scene;
+}
+
+}  // namespace photon

@@ -1,0 +1,81 @@
+// Every render setting once: its name in scene files (and photon-bench's --vary), its command-line
+// flag, what it accepts. The scene loader, photon-render, photon-bench and photon-view all parse
+// and check settings through this table, so that a value is accepted or refused alike everywhere,
+// with one message: "<where>: must be in [lo, hi] (got x)". Only finite values are accepted.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/frame/estimator_policy.h"
+#include "core/scene/scene.h"
+#include "core/settings/settings.h"
+
+namespace photon {
+
+// The values a number may take, for checks and their messages.
+struct Range {
+    double lo, hi;
+    bool openLo = false, openHi = false;
+
+    bool contains(double x) const { return (openLo ? x > lo : x >= lo) && (openHi ? x < hi : x <= hi); }
+    std::string describe() const;  // "positive", "in [0, 1)", ...
+};
+
+// A number as a message shows it: shortest round-trip form ("1e+39", "0.04").
+std::string formatNumber(double x);
+
+enum class SettingKind { Integer, Number, Choice, Flag };
+
+struct SettingSpec {
+    const char* key;   // in scene files' "render" block and --vary: "cell_size"
+    const char* flag;  // on the command line: "--cell-size"
+    const char* help;
+    SettingKind kind;
+    Range range;       // Integer and Number
+    std::string choices;  // Choice: "a|b|c"
+    // Reads and writes the setting: numbers and integers as double, choices as names, flags as 0/1.
+    std::function<double(const RenderSettings&)> get;
+    std::function<void(RenderSettings&, double)> set;
+    std::function<std::string(const RenderSettings&)> getName;
+    std::function<bool(RenderSettings&, const std::string&)> setName;  // false: not a choice
+};
+
+const std::vector<SettingSpec>& settingSpecs();
+
+// The setting of a scene-file key or a flag; nullptr if there is none.
+const SettingSpec* findSetting(const std::string& keyOrFlag);
+
+// Sets a setting from command-line text ("0.04", "knn", "true"); throws InputError
+// "<where>: <reason>" for anything it does not accept.
+void setSetting(RenderSettings& settings, const SettingSpec& spec, const std::string& text, const std::string& where);
+
+// The same from a JSON number (Integer, Number) or boolean (Flag); `shown` is the value as written.
+void setSettingNumber(RenderSettings& settings, const SettingSpec& spec, double value, const std::string& shown,
+                      const std::string& where);
+
+// A number of the command line that is no render setting (photon-render's --time), parsed and
+// checked as the settings are: a finite decimal number within `range`, else InputError
+// "<where>: must be ...".
+double parseNumber(const std::string& text, const Range& range, const std::string& where);
+
+// Every setting in its range (values set directly, as the viewer's HUD does, are checked here);
+// throws InputError naming the first bad one by its flag.
+void validateSettings(const RenderSettings& settings);
+
+// Whether a file or the command line set the setting of this key (or flag).
+bool isGiven(const RenderSettings& settings, const std::string& key);
+
+// What is left to choose once a render's length is known: sppm for a render of more than one frame
+// (or of a time), unless an estimator was given.
+void chooseDefaults(RenderSettings& settings, bool timed);
+
+// The default length of photon-render's render without --frames, --time or frames in the scene.
+inline constexpr double kDefaultRenderSeconds = 2.0;
+
+// The settings against the scene they render: query radii the grids can hold.
+void validateForScene(const RenderSettings& settings, const Scene& scene, const FrameRadii& radii);
+
+}  // namespace photon

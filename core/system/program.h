@@ -1,0 +1,54 @@
+// The outside of every Photon program: errors become one line on stderr naming the program, and an
+// exit code (0 success, 2 bad input, 1 runtime failure); command-line errors are bad input.
+#pragma once
+
+#include <csignal>
+#include <cstdio>
+#include <exception>
+#include <new>
+
+#include <CLI/CLI.hpp>
+
+#include "core/system/error.h"
+
+namespace photon {
+
+template <typename Run>
+int runProgram(const char* name, Run run) {
+    // A file-size limit (ulimit -f) or a closed pipe make writes fail with a reason, not the
+    // process die with a signal.
+    std::signal(SIGXFSZ, SIG_IGN);
+    std::signal(SIGPIPE, SIG_IGN);
+    auto report = [&](const char* what) { std::fprintf(stderr, "%s: %s\n", name, printable(what).c_str()); };
+    try {
+        return run();
+    } catch (const InputError& e) {
+        report(e.what());
+        return 2;
+    } catch (const std::bad_alloc&) {
+        report("out of memory");
+        return 1;
+    } catch (const std::exception& e) {
+        report(e.what());
+        return 1;
+    }
+}
+
+// Parses the command line: --help prints the help and returns 0; a bad command line throws
+// InputError with CLI11's one-line reason; otherwise returns -1 (go on).
+inline int parseCommandLine(CLI::App& app, int argc, char** argv) {
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        throw InputError(e.what());
+    }
+    return -1;
+}
+
+}  // namespace photon
