@@ -10,16 +10,15 @@
 #include "glsl/viewer.h"
 #include "target.h"
 #include "vulkan/context.h"
+#include "vulkan/non_copyable.h"
 
 namespace photon::viewer {
 
-class DisplayPass {
+class DisplayPass : vk::NonCopyable {
 public:
     // finalLayout: where the render pass leaves the target (PRESENT_SRC_KHR for a swapchain).
     DisplayPass(const vk::Context& context, VkFormat format, VkImageLayout finalLayout);
     ~DisplayPass();
-    DisplayPass(const DisplayPass&) = delete;
-    DisplayPass& operator=(const DisplayPass&) = delete;
 
     VkRenderPass renderPass() const { return renderPass_; }
     VkImageLayout finalLayout() const { return finalLayout_; }

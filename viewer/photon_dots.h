@@ -11,15 +11,14 @@
 
 #include "vulkan/backend.h"
 #include "vulkan/memory.h"
+#include "vulkan/non_copyable.h"
 
 namespace photon::viewer {
 
-class PhotonDots {
+class PhotonDots : vk::NonCopyable {
 public:
     PhotonDots(const vk::Context& context, const vk::VulkanBackend& backend);
     ~PhotonDots();
-    PhotonDots(const PhotonDots&) = delete;
-    PhotonDots& operator=(const PhotonDots&) = delete;
 
     // Sizes the dot buffer for a width × height image (three uint per pixel). Only while no
     // submitted frame uses it.
