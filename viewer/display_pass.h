@@ -8,6 +8,7 @@
 #include <vulkan/vulkan.h>
 
 #include "glsl/viewer.h"
+#include "pass_pipeline.h"
 #include "target.h"
 #include "vulkan/context.h"
 #include "vulkan/non_copyable.h"
@@ -39,11 +40,7 @@ private:
     const vk::Context& context_;
     VkImageLayout finalLayout_;
     VkRenderPass renderPass_ = VK_NULL_HANDLE;
-    VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;  // the two buffers, read by the fragment shader
-    VkPipelineLayout layout_ = VK_NULL_HANDLE;          // the set and DisplayPush
-    VkPipeline pipeline_ = VK_NULL_HANDLE;
-    VkDescriptorPool pool_ = VK_NULL_HANDLE;
-    VkDescriptorSet set_ = VK_NULL_HANDLE;
+    PassPipeline pass_;  // the set of the two buffers, read by the fragment shader; the layout adds DisplayPush
 };
 
 }  // namespace photon::viewer

@@ -9,6 +9,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include "pass_pipeline.h"
 #include "vulkan/backend.h"
 #include "vulkan/memory.h"
 #include "vulkan/non_copyable.h"
@@ -32,12 +33,8 @@ public:
 
 private:
     const vk::Context& context_;
-    VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;  // the dot buffer
-    VkPipelineLayout layout_ = VK_NULL_HANDLE;          // the backend's set, ours, DotsPush
-    VkPipeline pipeline_ = VK_NULL_HANDLE;
-    VkDescriptorPool pool_ = VK_NULL_HANDLE;
-    VkDescriptorSet set_ = VK_NULL_HANDLE;
-    vk::Buffer dots_;                                   // three fixed-point uint per pixel
+    PassPipeline pass_;  // the set of the dot buffer; the layout: the backend's set, ours, DotsPush
+    vk::Buffer dots_;    // three fixed-point uint per pixel
 };
 
 }  // namespace photon::viewer
