@@ -51,6 +51,7 @@ inline Scene overflowingScene() {
     return scene;
 }
 
+// `base` with room for one photon a path, and paths long enough to store many.
 inline RenderSettings overflowingSettings(RenderSettings base) {
     base.photonCapacity = 1.0f;
     base.maxPhotonDepth = 64;
