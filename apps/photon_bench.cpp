@@ -19,16 +19,16 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/backends.h"
-#include "core/system/program.h"
 #include "apps/render_options.h"
 #include "apps/scene_stats.h"
-#include "core/system/error.h"
-#include "core/frame/median.h"
-#include "core/system/output_file.h"
-#include "core/settings/setting_specs.h"
 #include "core/frame/buffers.h"
-#include "core/system/parallel.h"
+#include "core/frame/median.h"
 #include "core/loaders/scene_loader.h"
+#include "core/settings/setting_specs.h"
+#include "core/system/error.h"
+#include "core/system/output_file.h"
+#include "core/system/parallel.h"
+#include "core/system/program.h"
 #include "tools/bench_scenes.h"
 #ifdef PHOTON_HAVE_CUDA
 #include "cuda/cuda_backend.h"
@@ -55,17 +55,6 @@ struct Row {
     std::uint64_t triangles = 0;
     double primaryRaysPerSecond = 0.0;  // --primary-rays, CUDA
 };
-
-std::vector<std::string> split(const std::string& s) {
-    std::vector<std::string> out;
-    std::stringstream in(s);
-    for (std::string item; std::getline(in, item, ',');) {
-        if (!item.empty()) {
-            out.push_back(item);
-        }
-    }
-    return out;
-}
 
 std::pair<std::uint32_t, std::uint32_t> parseResolution(const std::string& s) {
     unsigned w = 0;
@@ -336,7 +325,7 @@ int run(int argc, char** argv) {
     // Every list value is checked now, with the scene files' ranges, before anything is measured.
     auto photonCounts = [&](const std::string& list, const char* flag) {
         std::vector<std::uint32_t> counts;
-        for (const std::string& n : split(list)) {
+        for (const std::string& n : splitList(list)) {
             RenderSettings s;
             setSetting(s, *findSetting("photons"), n, flag);
             counts.push_back(s.photons);
@@ -352,7 +341,7 @@ int run(int argc, char** argv) {
         gridSweepList = photonCounts(gridSweep, "--grid-sweep");
     }
     std::vector<std::pair<std::uint32_t, std::uint32_t>> resolutionList;
-    for (const std::string& r : split(resolutions)) {
+    for (const std::string& r : splitList(resolutions)) {
         resolutionList.push_back(parseResolution(r));
     }
     if (resolutionList.empty()) {
@@ -404,7 +393,7 @@ int run(int argc, char** argv) {
             std::string key = v.substr(0, eq);
             std::vector<Case> varied;
             for (const Case& c : cases) {
-                for (const std::string& value : split(v.substr(eq + 1))) {
+                for (const std::string& value : splitList(v.substr(eq + 1))) {
                     Case d = c;
                     applySetting(d.settings, key, value);
                     d.variant += (d.variant.empty() ? "" : " ") + key + "=" + value;
@@ -419,14 +408,14 @@ int run(int argc, char** argv) {
     std::vector<Row> rows;
     double processToFirstImage = 0.0;
     printHeader();
-    for (const std::string& backendName : split(backends)) {
+    for (const std::string& backendName : splitList(backends)) {
         Clock::time_point created = Clock::now();
         if (rows.empty()) {
             std::printf("  process start to backend creation: %.1f ms\n", msSince(kProcessStart));
         }
         std::unique_ptr<Backend> backend = createBackend(backendName, options);
         bool cpu = backendName == "cpu";
-        for (const std::string& sceneName : split(scenes)) {
+        for (const std::string& sceneName : splitList(scenes)) {
             Scene scene = sceneNamed(sceneName, scenesDir);
             printSceneCost(sceneName, scene);
             auto add = [&](const RenderSettings& s, const std::string& variant) {

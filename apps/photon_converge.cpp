@@ -15,26 +15,16 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/backends.h"
-#include "core/system/program.h"
-#include "core/system/error.h"
+#include "apps/render_options.h"
 #include "core/image/image_error.h"
-#include "core/system/output_file.h"
 #include "core/loaders/scene_loader.h"
 #include "core/settings/setting_specs.h"
+#include "core/system/error.h"
+#include "core/system/output_file.h"
+#include "core/system/program.h"
 
 namespace photon {
 namespace {
-
-std::vector<std::string> split(const std::string& s) {
-    std::vector<std::string> out;
-    std::stringstream in(s);
-    for (std::string item; std::getline(in, item, ',');) {
-        if (!item.empty()) {
-            out.push_back(item);
-        }
-    }
-    return out;
-}
 
 // A whole number in [0, limit], or InputError naming the option.
 std::uint32_t parseCount(const std::string& text, std::uint32_t limit, const std::string& what) {
@@ -57,7 +47,7 @@ Window parseWindow(const std::string& text, const Image& reference) {
         std::uint32_t half = text.size() > 5 ? parseCount(text.substr(5), 1024, "--window") : 3u;
         return brightestWindow(reference, half);
     }
-    std::vector<std::string> parts = split(text);
+    std::vector<std::string> parts = splitList(text);
     Window w;
     if (parts.size() == 4) {
         w.x0 = parseCount(parts[0], reference.width, "--window");
@@ -147,7 +137,7 @@ int run(int argc, char** argv) {
     out["device"] = backend->deviceName();
     out["photons_per_frame"] = base.photons;
     out["window"] = {window.x0, window.y0, window.x1, window.y1};
-    for (const std::string& name : split(estimators)) {
+    for (const std::string& name : splitList(estimators)) {
         RenderSettings s = base;
         setSetting(s, *findSetting("estimator"), name, "--estimators");
         backend->setSettings(s);

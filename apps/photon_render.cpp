@@ -18,15 +18,15 @@
 
 #include "apps/backends.h"
 #include "apps/interrupt.h"
-#include "core/system/program.h"
 #include "apps/progress.h"
 #include "apps/render_options.h"
 #include "apps/scene_stats.h"
-#include "core/system/error.h"
 #include "core/frame/median.h"
-#include "core/system/output_file.h"
 #include "core/loaders/scene_loader.h"
 #include "core/settings/setting_specs.h"
+#include "core/system/error.h"
+#include "core/system/output_file.h"
+#include "core/system/program.h"
 
 namespace photon {
 namespace {

@@ -15,12 +15,12 @@
 #include <CLI/CLI.hpp>
 
 #include "apps/render_options.h"
-#include "core/system/program.h"
-#include "core/system/error.h"
 #include "core/image/image.h"
-#include "core/system/output_file.h"
 #include "core/loaders/scene_loader.h"
 #include "core/settings/setting_specs.h"
+#include "core/system/error.h"
+#include "core/system/output_file.h"
+#include "core/system/program.h"
 #include "viewer/viewer.h"
 
 namespace photon {

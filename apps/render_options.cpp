@@ -1,9 +1,22 @@
 #include "render_options.h"
 
-#include "core/system/error.h"
+#include <sstream>
+
 #include "core/settings/setting_specs.h"
+#include "core/system/error.h"
 
 namespace photon {
+
+std::vector<std::string> splitList(const std::string& text) {
+    std::vector<std::string> out;
+    std::stringstream in(text);
+    for (std::string item; std::getline(in, item, ',');) {
+        if (!item.empty()) {
+            out.push_back(item);
+        }
+    }
+    return out;
+}
 
 void addRenderOptions(CLI::App& app, RenderOptions& o) {
     for (const SettingSpec& spec : settingSpecs()) {

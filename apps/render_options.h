@@ -1,10 +1,11 @@
-// The render settings on the command line, shared by photon-render and photon-view: one option per
-// setting of core/settings/setting_specs.h, parsed and checked there. Only the options given on the command
-// line override the scene file's settings.
+// The render settings on the command line, shared by photon-render and photon-view: one option
+// per setting of core/settings/setting_specs.h, parsed and checked there. Only the options given
+// on the command line override the scene file's settings.
 #pragma once
 
 #include <map>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -20,6 +21,9 @@ struct RenderOptions {
     // model files are read.
     PathPolicy paths;
 };
+
+// The items of a comma-separated option ("cuda,vulkan"), empty ones dropped.
+std::vector<std::string> splitList(const std::string& text);
 
 // The settings' options, and --allow-outside-paths.
 void addRenderOptions(CLI::App& app, RenderOptions& options);

@@ -7,10 +7,10 @@
 
 #include "core/system/parallel.h"
 #include "shared/eye_trace.h"
-#include "shared/sppm.h"
 #include "shared/photon_map.h"
 #include "shared/photon_trace.h"
 #include "shared/progressive.h"
+#include "shared/sppm.h"
 
 namespace photon {
 namespace {

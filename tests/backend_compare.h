@@ -6,12 +6,15 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
 #include <string>
 #include <vector>
 
 #include "core/frame/backend.h"
 #include "core/image/image.h"
+#include "core/system/error.h"
+#include "test_render.h"
 #include "test_util.h"
 
 namespace photon::test {
@@ -25,11 +28,7 @@ struct StageOutputs {
 };
 
 inline StageOutputs renderStages(Backend& backend, const Scene& scene, const RenderSettings& settings) {
-    backend.setScene(scene);
-    backend.setSettings(settings);
-    for (std::uint32_t f = 0; f < settings.frames; ++f) {
-        backend.renderFrame();
-    }
+    renderFrames(backend, scene, settings, settings.frames);
     StageOutputs out;
     out.maps = backend.readPhotonMaps();
     out.hitPoints = backend.readHitPoints();
@@ -37,6 +36,50 @@ inline StageOutputs renderStages(Backend& backend, const Scene& scene, const Ren
     out.image = backend.image();
     out.stats = backend.lastFrameStats();
     return out;
+}
+
+// A photon map that overflows the room the settings give it, for the GPU backends to grow: albedo
+// 0.9 in a closed sphere stores ~9 photons per path; photonCapacity 1 gives room for 1 per path.
+inline Scene overflowingScene() {
+    Scene scene;
+    std::uint32_t wall = scene.addMaterial("wall", makeDiffuse(glm::vec3(0.9f)));
+    scene.addSphere(glm::vec3(0.0f), 1.0f, wall);
+    scene.addPointLight(glm::vec3(0.0f), glm::vec3(10.0f));
+    scene.camera.position = glm::vec3(0.0f);
+    scene.camera.lookAt = glm::vec3(0, 0, -1);
+    scene.finalize();
+    return scene;
+}
+
+// `base` with room for one photon a path, and paths long enough to store many.
+inline RenderSettings overflowingSettings(RenderSettings base) {
+    base.photonCapacity = 1.0f;
+    base.maxPhotonDepth = 64;
+    base.radius = 0.2f;
+    return base;
+}
+
+// Settings whose photon buffers are as large as they can be for their paths: every path a global
+// one, with room for 64 photons (for requests too large for a device).
+inline RenderSettings roomFor64PhotonsPerPath(RenderSettings base) {
+    base.photonCapacity = 64.0f;
+    base.maxPhotonDepth = 64;
+    base.causticFraction = 0.0f;
+    return base;
+}
+
+// prepare() refuses the backend's scene and settings with an InputError, before any work;
+// `accepted` is the failure if it does not. `naming`: a word the message must hold (or none).
+inline void expectRefused(Backend& backend, const std::string& accepted, const char* naming = nullptr) {
+    try {
+        backend.prepare();
+        ADD_FAILURE() << accepted;
+    } catch (const InputError& e) {
+        std::printf("refused: %s\n", e.what());
+        if (naming != nullptr) {
+            EXPECT_NE(std::string(e.what()).find(naming), std::string::npos) << e.what();
+        }
+    }
 }
 
 // Each cell's photons as raw bytes, sorted, so that append order does not matter.

@@ -4,12 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 
 #include "apps/backends.h"
 #include "backend_compare.h"
-#include "core/system/error.h"
 #include "core/loaders/scene_loader.h"
 #include "cuda/cuda_backend.h"
 
@@ -27,10 +25,7 @@ protected:
     // Exhaustive gathers: subsampling a dense cell picks photons by their place in the cell, and
     // the GPU appends photons in a different order than the CPU (see GatherBudget tests).
     static RenderSettings small() {
-        RenderSettings s = defaultScene().render;
-        s.width = 96;
-        s.height = 72;
-        s.photons = 50000;
+        RenderSettings s = test::sizedSettings(defaultScene().render, 96, 72, 50000);
         s.frames = 2;
         s.gatherBudget = 0;
         return s;
@@ -99,10 +94,7 @@ TEST_F(CudaVsCpu, TooLargeRequestsAreRefusedBeforeWork) {
     Scene scene = defaultScene();
     auto cuda = createBackend("cuda");
     MemoryLimits limits = cuda->memoryLimits();
-    RenderSettings s = scene.render;
-    s.photonCapacity = 64.0f;
-    s.maxPhotonDepth = 64;
-    s.causticFraction = 0.0f;  // every path a global one, with room for 64 photons
+    RenderSettings s = test::roomFor64PhotonsPerPath(scene.render);
     // Photon buffers alone: two Photon arrays and a key per stored photon.
     double perPath = 64.0 * (2.0 * sizeof(Photon) + sizeof(std::uint32_t));
     double paths = std::ceil(1.5 * double(limits.total) / perPath);
@@ -112,17 +104,8 @@ TEST_F(CudaVsCpu, TooLargeRequestsAreRefusedBeforeWork) {
     s.photons = static_cast<std::uint32_t>(paths);
     cuda->setScene(scene);
     cuda->setSettings(s);
-    try {
-        cuda->prepare();
-        ADD_FAILURE() << s.photons << " photon paths at 64 photons each were accepted";
-    } catch (const InputError& e) {
-        std::printf("refused: %s\n", e.what());
-    }
-    s = scene.render;
-    s.width = 64;
-    s.height = 48;
-    s.photons = 10000;
-    cuda->setSettings(s);
+    test::expectRefused(*cuda, std::to_string(s.photons) + " photon paths at 64 photons each were accepted");
+    cuda->setSettings(test::sizedSettings(scene.render, 64, 48, 10000));
     cuda->renderFrame();
     EXPECT_TRUE(allFinite(cuda->image()));
 }
@@ -149,14 +132,8 @@ TEST_F(CudaVsCpu, EveryShippedSceneRendersWithoutNaN) {
         }
         SCOPED_TRACE(entry.path().string());
         Scene scene = loadSceneFile(entry.path().string());
-        RenderSettings s = scene.render;
-        s.width = 64;
-        s.height = 48;
-        s.photons = 20000;
         auto cuda = createBackend("cuda");
-        cuda->setScene(scene);
-        cuda->setSettings(s);
-        cuda->renderFrame();
+        test::renderFrames(*cuda, scene, test::sizedSettings(scene.render, 64, 48, 20000), 1);
         EXPECT_TRUE(allFinite(cuda->image()));
     }
 }
@@ -173,21 +150,8 @@ TEST_F(CudaVsCpu, MeshScenesInTheParityBuild) {
 }
 
 TEST_F(CudaVsCpu, OverflowingPhotonMapGrowsAndTheFirstFrameIsRedone) {
-    // Albedo 0.9 in a closed sphere stores ~9 photons per path; room for 1 per path overflows.
-    Scene scene;
-    std::uint32_t m = scene.addMaterial("wall", makeDiffuse(glm::vec3(0.9f)));
-    scene.addSphere(glm::vec3(0.0f), 1.0f, m);
-    scene.addPointLight(glm::vec3(0.0f), glm::vec3(10.0f));
-    scene.camera.position = glm::vec3(0.0f);
-    scene.camera.lookAt = glm::vec3(0, 0, -1);
-    scene.finalize();
-    RenderSettings s;
-    s.width = 32;
-    s.height = 32;
-    s.photons = 20000;
-    s.maxPhotonDepth = 64;
-    s.photonCapacity = 1.0f;
-    s.radius = 0.2f;
+    Scene scene = test::overflowingScene();
+    RenderSettings s = test::overflowingSettings(test::sizedSettings({}, 32, 32, 20000));
     auto cuda = createBackend("cuda", BackendOptions{"", false, true});
     auto cpu = createBackend("cpu");
     test::StageOutputs actual = test::renderStages(*cuda, scene, s);

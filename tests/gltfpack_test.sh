@@ -5,11 +5,11 @@
 # give the original's mean radiance within 1%.
 #   tests/gltfpack_test.sh <photon-render> <scenes dir> <work dir>
 set -uo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 render=$1
 scenes=$2
 work=$3
 models=/usr/share/assimp/models/glTF2
-failures=0
 rm -rf "$work"
 mkdir -p "$work"
 
@@ -17,8 +17,6 @@ if ! command -v gltfpack >/dev/null 2>&1; then
   echo "FAIL: gltfpack is not installed (tools/install-deps.sh installs it)"
   exit 1
 fi
-
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 
 # pack <out> <gltfpack options...>: gltfpack's output, or a failure.
 pack() {

@@ -4,6 +4,7 @@
 # signal (130, 143); a second one ends the process at once with nothing at the output's path.
 #   tests/interrupt_test.sh <photon-render>
 set -uo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 render=$1
 tmp=$(mktemp -d)
 pids=()
@@ -12,19 +13,6 @@ cleanup() {
   rm -rf "$tmp"
 }
 trap cleanup EXIT
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
-
-# Every value of a PFM image is finite, and there is at least one pixel.
-finite_pfm() {
-  python3 - "$1" <<'EOF'
-import array, math, sys
-data = open(sys.argv[1], 'rb').read()
-header, size, scale, pixels = data.split(b'\n', 3)
-values = array.array('f'); values.frombytes(pixels)
-sys.exit(0 if values and all(math.isfinite(v) for v in values) else 1)
-EOF
-}
 
 # finish <pid> <seconds>: waits for the process to end (a hang is killed and fails), sets $code.
 finish() {

@@ -1,4 +1,4 @@
-// Renders with known answers made of triangles, on the CPU backend:
+// Renders with known answers made of triangles, on the CPU backend (known_answers.h):
 //   furnace:   a tessellated closed diffuse sphere around a point light; the mean radiance of any
 //              closed Lambertian enclosure is ρΦ / (π(1−ρ)A), so the sphere's value ρΦ/(4π²R²(1−ρ))
 //              holds to within the tessellation's area error;
@@ -12,13 +12,14 @@
 
 #include "apps/backends.h"
 #include "core/loaders/model_loader.h"
+#include "known_answers.h"
 #include "test_util.h"
 #include "tools/mesh_shapes.h"
 
 namespace photon {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using test::kPi;
 
 double meshArea(const Scene& s) {
     double area = 0.0;
@@ -41,16 +42,9 @@ TEST(ModelScene, FlatModelsAreLitOnTheSideTheCameraSees) {
             obj << "v 0 0 0\nv 0 1 0\nv 0 1 1\nv 0 0 1\n" << (nx > 0 ? "f 1 2 3 4\n" : "f 4 3 2 1\n");
         }
         Scene scene = loadModelScene(path);
-        RenderSettings s = scene.render;
-        s.width = 32;
-        s.height = 24;
-        s.photons = 5000;
+        RenderSettings s = test::sizedSettings(scene.render, 32, 24, 5000);
         s.view = View::Direct;
-        auto backend = createBackend("cpu");
-        backend->setScene(scene);
-        backend->setSettings(s);
-        backend->renderFrame();
-        Image image = backend->image();
+        Image image = test::renderOnCpu(scene, s);
         std::size_t lit = 0;
         for (const glm::vec4& p : image.pixels) {
             lit += p.x > 0.0f ? 1u : 0u;
@@ -63,38 +57,16 @@ TEST(MeshFurnace, TessellatedSphereWithinOnePercentPlusItsTessellation) {
     const float R = 2.0f;
     const float rho = 0.5f;
     const float phi = 10.0f;
-    Scene s;
-    std::uint32_t wall = s.addMaterial("wall", makeDiffuse(glm::vec3(rho)));
-    Mesh mesh = tools::uvSphere(glm::vec3(0.0f), R, 48, 96, true);
-    mesh.materials.assign(mesh.triangles.size(), wall);
-    s.addMesh(mesh, glm::mat4(1.0f));
-    s.addPointLight(glm::vec3(0.0f), glm::vec3(phi));
-    s.camera.position = glm::vec3(0.0f);
-    s.camera.lookAt = glm::vec3(0.3f, 0.2f, -1.0f);
-    s.camera.fovY = 90.0f;
-    s.finalize();
+    Scene s = test::furnaceScene(rho, phi, [&](Scene& scene, std::uint32_t wall) {
+        Mesh mesh = tools::uvSphere(glm::vec3(0.0f), R, 48, 96, true);
+        mesh.materials.assign(mesh.triangles.size(), wall);
+        scene.addMesh(mesh, glm::mat4(1.0f));
+    });
     double tessellation = 4.0 * kPi * R * R / meshArea(s) - 1.0;
-    RenderSettings settings;
-    settings.width = 48;
-    settings.height = 48;
-    settings.photons = 200000;
-    settings.frames = 4;
-    settings.estimator = Estimator::Radius;
-    settings.radius = 0.15f;
-    settings.maxPhotonDepth = 64;
-    auto backend = createBackend("cpu");
-    backend->setScene(s);
-    backend->setSettings(settings);
-    for (std::uint32_t f = 0; f < settings.frames; ++f) {
-        backend->renderFrame();
-    }
-    Image image = backend->image();
-    double expected = rho * phi / (4.0 * kPi * kPi * R * R * (1.0 - rho));
-    double mean = 0.0;
-    for (const glm::vec4& p : image.pixels) {
-        mean += p.x;
-    }
-    mean /= double(image.pixels.size());
+    RenderSettings settings = test::furnaceSettings(Estimator::Radius);
+    Image image = test::renderOnCpu(s, settings, settings.frames);
+    double expected = test::furnaceRadiance(R, rho, phi);
+    double mean = test::meanRed(image);
     std::printf("tessellated furnace (%zu triangles): mean/expected %.4f, tessellation area error %.4f\n",
                 s.triangles.size(), mean / expected, tessellation);
     EXPECT_NEAR(mean / expected, 1.0, 0.01 + std::abs(tessellation));
@@ -102,54 +74,19 @@ TEST(MeshFurnace, TessellatedSphereWithinOnePercentPlusItsTessellation) {
 
 TEST(MeshBallLens, SmoothTessellatedSphereFocusesAtTheParaxialFocus) {
     const float n = 1.5f;
-    const double focus = n / (2.0 * (n - 1.0));
+    const double focus = test::paraxialFocus(n);
     const float probe = 0.001f;
-    // One scene per screen position; the sphere of 200k triangles is built once and copied.
-    Scene base;
-    std::uint32_t glass = base.addMaterial("glass", makeGlass(n, glm::vec3(1.0f)));
-    std::uint32_t white = base.addMaterial("white", makeDiffuse(glm::vec3(0.8f)));
-    Mesh sphere = tools::uvSphere(glm::vec3(0.0f), 1.0f, 224, 448, true);
-    sphere.materials.assign(sphere.triangles.size(), glass);
-    base.addMesh(sphere, glm::mat4(1.0f));
-    ASSERT_GE(base.triangles.size(), 100000u);
-    float distance = 1000.0f;
-    float angle = float(std::atan(0.1 / distance) * 180.0 / kPi);
-    base.addSpotLight(glm::vec3(0.0f, 0.0f, -distance), glm::vec3(0, 0, 1), glm::vec3(1.0f), angle, angle);
-    base.camera.position = glm::vec3(3.0f, 0.0f, 0.0f);
-    base.camera.lookAt = glm::vec3(0.0f);
-    double bestZ = 0.0;
-    double bestDensity = -1.0;
-    auto backend = createBackend("cpu");
-    for (int i = 0; i <= 40; ++i) {
-        float z = 1.40f + 0.005f * float(i);
-        Scene s = base;
-        s.addQuad(glm::vec3(-2.0f, -2.0f, z), glm::vec3(4, 0, 0), glm::vec3(0, 4, 0), white);
-        s.finalize();
-        RenderSettings settings;
-        settings.width = 4;
-        settings.height = 4;
-        settings.photons = 200000;
-        settings.causticFraction = 0.99f;
-        settings.causticRadius = probe;
-        backend->setScene(std::move(s));
-        backend->setSettings(settings);
-        backend->renderFrame();
-        PhotonMaps maps = backend->readPhotonMaps();
-        double density = 0.0;
-        for (const Photon& p : maps.photons[MAP_CAUSTIC]) {
-            if (p.position.x * p.position.x + p.position.y * p.position.y < probe * probe) {
-                density += p.power.x;
-            }
-        }
-        if (density > bestDensity) {
-            bestDensity = density;
-            bestZ = z;
-        }
-    }
+    // The sphere of 200k triangles is built once; the search copies it for each screen position.
+    Scene lens = test::ballLensScene(n, [](Scene& s, std::uint32_t glass) {
+        Mesh sphere = tools::uvSphere(glm::vec3(0.0f), 1.0f, 224, 448, true);
+        sphere.materials.assign(sphere.triangles.size(), glass);
+        s.addMesh(sphere, glm::mat4(1.0f));
+    });
+    ASSERT_GE(lens.triangles.size(), 100000u);
+    test::CausticPeak peak = test::findCausticPeak(lens, probe);
     std::printf("tessellated ball lens (%zu triangles): caustic peak at z = %.3f, paraxial focus %.3f\n",
-                base.triangles.size(), bestZ, focus);
-    EXPECT_GT(bestDensity, 0.0);
-    EXPECT_NEAR(bestZ / focus, 1.0, 0.02);
+                lens.triangles.size(), peak.z, focus);
+    test::expectPeakAtFocus(peak, focus);
 }
 
 }  // namespace

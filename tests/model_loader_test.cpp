@@ -21,8 +21,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <meshoptimizer.h>
 
-#include "core/system/error.h"
 #include "core/image/image.h"
+#include "core/system/error.h"
 #include "shared/material.h"
 #include "shared/math.h"
 #include "test_util.h"
@@ -114,6 +114,22 @@ struct Gltf {
         {"meshes", R"([{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 2}, "indices": 1, "material": 0}]}])"},
         {"materials", R"([{"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.25, 0.125, 1], "metallicFactor": 0}}])"},
     };
+
+    // The triangle `count` times, triangle i in mesh i of material i under root node i.
+    void trianglePerMaterial(int count) {
+        std::string meshes = "[";
+        std::string nodes = "[";
+        std::string roots = "[";
+        for (int i = 0; i < count; ++i) {
+            std::string n = std::to_string(i);
+            meshes += (i ? "," : "") + std::string(R"({"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": )") + n + "}]}";
+            nodes += (i ? "," : "") + std::string(R"({"mesh": )") + n + "}";
+            roots += (i ? "," : "") + n;
+        }
+        parts["meshes"] = meshes + "]";
+        parts["nodes"] = nodes + "]";
+        parts["scenes"] = R"([{"nodes": )" + roots + "]}]";
+    }
 
     std::string data() const {
         std::string bytes;
@@ -357,18 +373,7 @@ TEST(GltfLoader, MaterialsMapAsDocumented) {
          "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1}, "KHR_materials_ior": {"ior": 1.7}}},
         {"emissiveFactor": [1, 0.5, 0.25], "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 4}}},
         {"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1], "metallicFactor": 0, "roughnessFactor": 0.3}}])";
-    std::string meshes = "[";
-    std::string nodes = "[";
-    std::string roots = "[";
-    for (int i = 0; i < 6; ++i) {
-        std::string n = std::to_string(i);
-        meshes += (i ? "," : "") + std::string(R"({"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": )") + n + "}]}";
-        nodes += (i ? "," : "") + std::string(R"({"mesh": )") + n + "}";
-        roots += (i ? "," : "") + n;
-    }
-    g.parts["meshes"] = meshes + "]";
-    g.parts["nodes"] = nodes + "]";
-    g.parts["scenes"] = R"([{"nodes": )" + roots + "]}]";
+    g.trianglePerMaterial(6);
     Scene scene;
     load(scene, "mat.gltf", g.text());
     ASSERT_EQ(scene.triangles.size(), 6u);
@@ -409,18 +414,7 @@ TEST(GltfLoader, AlphaModesVolumeAndTextureTransform) {
         {"extensions": {"KHR_materials_transmission": {"transmissionFactor": 1},
                         "KHR_materials_volume": {"thicknessFactor": 1, "attenuationDistance": 2,
                                                  "attenuationColor": [0.5, 1, 0.25]}}}])";
-    std::string meshes = "[";
-    std::string nodes = "[";
-    std::string roots = "[";
-    for (int i = 0; i < 3; ++i) {
-        std::string n = std::to_string(i);
-        meshes += (i ? "," : "") + std::string(R"({"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": )") + n + "}]}";
-        nodes += (i ? "," : "") + std::string(R"({"mesh": )") + n + "}";
-        roots += (i ? "," : "") + n;
-    }
-    g.parts["meshes"] = meshes + "]";
-    g.parts["nodes"] = nodes + "]";
-    g.parts["scenes"] = R"([{"nodes": )" + roots + "]}]";
+    g.trianglePerMaterial(3);
     Scene scene;
     load(scene, "alpha.gltf", g.text());
     scene.finalize();

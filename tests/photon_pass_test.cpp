@@ -4,6 +4,7 @@
 
 #include "apps/backends.h"
 #include "core/loaders/scene_loader.h"
+#include "test_render.h"
 #include "test_util.h"
 
 namespace photon {
@@ -11,10 +12,7 @@ namespace {
 
 // Total flux in each map after one frame, averaged over a few frames.
 glm::dvec2 mapFlux(const Scene& scene, float causticFraction, std::uint32_t seed) {
-    RenderSettings settings;
-    settings.width = 4;
-    settings.height = 4;
-    settings.photons = 400000;
+    RenderSettings settings = test::sizedSettings({}, 4, 4, 400000);
     settings.causticFraction = causticFraction;
     settings.seed = seed;
     auto backend = createBackend("cpu");
@@ -75,19 +73,10 @@ namespace {
 TEST(GatherBudget, SubsamplingDenseCellsIsUnbiased) {
     auto render = [](std::uint32_t budget) {
         Scene scene = defaultScene();
-        RenderSettings s = scene.render;
-        s.width = 96;
-        s.height = 72;
-        s.photons = 60000;
+        RenderSettings s = test::sizedSettings(scene.render, 96, 72, 60000);
         s.view = View::Caustic;
         s.gatherBudget = budget;
-        auto backend = createBackend("cpu");
-        backend->setScene(scene);
-        backend->setSettings(s);
-        for (int f = 0; f < 48; ++f) {
-            backend->renderFrame();
-        }
-        return backend->image();
+        return test::renderOnCpu(scene, s, 48);
     };
     Image exhaustive = render(0);
     Image subsampled = render(8);

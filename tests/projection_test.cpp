@@ -17,6 +17,16 @@ struct CameraCase {
     float fovY;
     std::uint32_t width;
     std::uint32_t height;
+
+    // The camera as the renderer makes it for this case's image.
+    Camera camera() const {
+        CameraDesc desc;
+        desc.position = position;
+        desc.lookAt = lookAt;
+        desc.up = up;
+        desc.fovY = fovY;
+        return makeCamera(desc, width, height);
+    }
 };
 
 const CameraCase kCameras[] = {
@@ -27,12 +37,7 @@ const CameraCase kCameras[] = {
 
 TEST(ProjectToPixel, InvertsCameraRayThroughPixelCentres) {
     for (const CameraCase& k : kCameras) {
-        CameraDesc desc;
-        desc.position = k.position;
-        desc.lookAt = k.lookAt;
-        desc.up = k.up;
-        desc.fovY = k.fovY;
-        Camera camera = makeCamera(desc, k.width, k.height);
+        Camera camera = k.camera();
         for (std::uint32_t py = 0; py < k.height; py += 7) {
             for (std::uint32_t px = 0; px < k.width; px += 5) {
                 Rng rng = rngCreate(py * k.width + px, 0u, 1u, STREAM_CAMERA);
@@ -50,12 +55,7 @@ TEST(ProjectToPixel, InvertsCameraRayThroughPixelCentres) {
 
 TEST(ProjectToPixel, JitteredRaysStayInsideTheirPixel) {
     const CameraCase& k = kCameras[1];
-    CameraDesc desc;
-    desc.position = k.position;
-    desc.lookAt = k.lookAt;
-    desc.up = k.up;
-    desc.fovY = k.fovY;
-    Camera camera = makeCamera(desc, k.width, k.height);
+    Camera camera = k.camera();
     for (std::uint32_t i = 0; i < 2000; ++i) {
         std::uint32_t px = (i * 37u) % k.width;
         std::uint32_t py = (i * 101u) % k.height;

@@ -4,6 +4,7 @@
 # hang, a NaN image or a half-written file.
 #   tests/reliability_test.sh <photon-render> <photon-bench> <scenes dir> <photon-make-mesh>
 set -uo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 render=$1
 bench=$2
 scenes=$3
@@ -14,10 +15,7 @@ cleanup() {
   rm -rf "$tmp"
 }
 trap cleanup EXIT
-failures=0
 small=(--backend cpu --width 32 --height 24 --photons 5000 --frames 1 -q)
-
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 
 # expect <code> <stderr substring or ""> <command...>: the exit code, one line on stderr naming
 # the program, and the substring.
@@ -39,17 +37,6 @@ expect() {
   else
     echo "ok: exit $got: $*"
   fi
-}
-
-# Every value of a PFM image is finite.
-finite_pfm() {
-  python3 - "$1" <<'EOF'
-import array, math, sys
-data = open(sys.argv[1], 'rb').read()
-header, size, scale, pixels = data.split(b'\n', 3)
-values = array.array('f'); values.frombytes(pixels)
-sys.exit(0 if values and all(math.isfinite(v) for v in values) else 1)
-EOF
 }
 
 # 1. Inputs that crashed the bounded grid.

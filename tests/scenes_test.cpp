@@ -6,6 +6,7 @@
 
 #include "apps/backends.h"
 #include "core/loaders/scene_loader.h"
+#include "test_render.h"
 #include "test_util.h"
 
 namespace photon {
@@ -20,17 +21,9 @@ TEST(ShippedScenes, RenderFiniteAndLit) {
         SCOPED_TRACE(entry.path().string());
         Scene scene = loadSceneFile(entry.path().string());
         for (Estimator e : {Estimator::Radius, Estimator::Knn, Estimator::Cell, Estimator::Progressive}) {
-            RenderSettings s = scene.render;
-            s.width = 64;
-            s.height = 48;
-            s.photons = 20000;
+            RenderSettings s = test::sizedSettings(scene.render, 64, 48, 20000);
             s.estimator = e;
-            auto backend = createBackend("cpu");
-            backend->setScene(scene);
-            backend->setSettings(s);
-            backend->renderFrame();
-            backend->renderFrame();
-            Image image = backend->image();
+            Image image = test::renderOnCpu(scene, s, 2);
             EXPECT_TRUE(allFinite(image)) << toString(e);
             EXPECT_GT(meanLuminance(image), 0.0) << toString(e);
         }

@@ -10,11 +10,12 @@
 #include <string>
 
 #include "apps/backends.h"
-#include "core/system/error.h"
+#include "backend_compare.h"
 #include "core/image/image_error.h"
 #include "core/loaders/scene_loader.h"
 #include "core/settings/setting_specs.h"
-#include "backend_compare.h"
+#include "core/system/error.h"
+#include "test_render.h"
 #include "test_util.h"
 
 namespace photon {
@@ -22,11 +23,8 @@ namespace {
 
 // The scene at the reference's size, pixel centres (as the references were made).
 RenderSettings referenceSettings(const Scene& scene, Estimator estimator, std::uint32_t photons) {
-    RenderSettings s = scene.render;
-    s.width = 64;
-    s.height = 48;
+    RenderSettings s = test::sizedSettings(scene.render, 64, 48, photons);
     s.pixelCenter = true;
-    s.photons = photons;
     s.estimator = estimator;
     s.seed = 3;
     return s;
@@ -103,10 +101,7 @@ TEST(Sppm, FarObjectKeepsTheIndirectLight) {
         far.addSphere(glm::vec3(1e9f, 0.0f, 0.0f), 0.1f, grey);
         far.addSphere(glm::vec3(0.0f, -1e9f, 0.0f), 0.1f, grey);
         far.finalize();
-        RenderSettings s = near.render;
-        s.width = 64;
-        s.height = 48;
-        s.photons = 50000;
+        RenderSettings s = test::sizedSettings(near.render, 64, 48, 50000);
         s.estimator = estimator;
         s.view = View::Global;
         double mean[2];
@@ -123,21 +118,14 @@ TEST(Sppm, FarObjectKeepsTheIndirectLight) {
 
 TEST(Sppm, SameSeedRepeatsAndACameraChangeRestarts) {
     Scene scene = defaultScene();
-    RenderSettings s = scene.render;
-    s.width = 48;
-    s.height = 36;
-    s.photons = 20000;
+    RenderSettings s = test::sizedSettings(scene.render, 48, 36, 20000);
     s.estimator = Estimator::Sppm;
     Image first = renderCheckpoints(scene, s, {3}).back();
     Image second = renderCheckpoints(scene, s, {3}).back();
     EXPECT_EQ(test::differingPixels(first, second), 0u);
     // Three frames, a camera "change" that restarts, three frames: the statistics start again.
     auto backend = createBackend("cpu");
-    backend->setScene(scene);
-    backend->setSettings(s);
-    for (int f = 0; f < 3; ++f) {
-        backend->renderFrame();
-    }
+    test::renderFrames(*backend, scene, s, 3);
     backend->setCamera(scene.camera);
     for (int f = 0; f < 3; ++f) {
         backend->renderFrame();
@@ -172,16 +160,11 @@ TEST(AutomaticRadius, FollowsThePixelFootprint) {
 TEST(SppmCells, FollowTheLargestRadius) {
     for (float radius : {1e12f, 1e15f}) {
         Scene scene = defaultScene();
-        RenderSettings s = scene.render;
-        s.width = 64;
-        s.height = 48;
-        s.photons = 20000;
+        RenderSettings s = test::sizedSettings(scene.render, 64, 48, 20000);
         s.estimator = Estimator::Sppm;
         s.radius = radius;
         auto backend = createBackend("cpu");
-        backend->setScene(scene);
-        backend->setSettings(s);
-        backend->renderFrame();
+        test::renderFrames(*backend, scene, s, 1);
         // The second frame's grids, as it would run (not run: the old cells made it hang).
         const FrameParams& next = backend->beginFrame();
         // A frame shrinks a pixel's radius by √α at most (R'² = R²(N + αM)/(N + M)).

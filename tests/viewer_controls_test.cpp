@@ -5,9 +5,9 @@
 #include <cmath>
 
 #include "core/loaders/scene_loader.h"
+#include "shared/light_types.h"
 #include "viewer/camera_controller.h"
 #include "viewer/light_editor.h"
-#include "shared/light_types.h"
 
 namespace photon::viewer {
 namespace {

@@ -22,9 +22,9 @@
 #include <filesystem>
 
 #include "apps/backends.h"
-#include "core/system/error.h"
-#include "core/loaders/scene_loader.h"
 #include "backend_compare.h"
+#include "core/loaders/scene_loader.h"
+#include "core/system/error.h"
 #include "test_util.h"
 #include "vulkan/context.h"
 #include "vulkan/vulkan_backend.h"
@@ -69,10 +69,7 @@ Scene featureScene() {
 // visit every photon of a cell (gather budget 0): a subsampled cell depends on the order of its
 // photons, which on a GPU is the order in which atomics happened to append them.
 RenderSettings smallSettings(std::uint32_t photons = 40000) {
-    RenderSettings s;
-    s.width = 48;
-    s.height = 36;
-    s.photons = photons;
+    RenderSettings s = test::sizedSettings({}, 48, 36, photons);
     s.radius = 0.08f;
     s.causticRadius = 0.05f;
     s.gatherBudget = 0;
@@ -249,10 +246,7 @@ TEST_F(VulkanBackendTest, EverySceneFileRendersFinite) {
             continue;
         }
         Scene scene = loadSceneFile(entry.path().string());
-        RenderSettings settings = scene.render;
-        settings.width = 40;
-        settings.height = 30;
-        settings.photons = 30000;
+        RenderSettings settings = test::sizedSettings(scene.render, 40, 30, 30000);
         settings.gatherBudget = 0;  // see smallSettings()
         render(scene, settings, 2);
         Image image = vulkan_->image();
@@ -280,19 +274,7 @@ TEST_F(VulkanBackendTest, MeshScenesMatchCpu) {
 // A map that overflows its capacity in the first frame is grown and the frame runs again, so the
 // maps hold every photon: they match the CPU's.
 TEST_F(VulkanBackendTest, OverflowingMapGrowsWithoutLosingPhotons) {
-    // Albedo 0.9 in a closed sphere stores ~9 photons per path; room for 1 per path overflows.
-    Scene scene;
-    std::uint32_t wall = scene.addMaterial("wall", makeDiffuse(glm::vec3(0.9f)));
-    scene.addSphere(glm::vec3(0.0f), 1.0f, wall);
-    scene.addPointLight(glm::vec3(0.0f), glm::vec3(10.0f));
-    scene.camera.position = glm::vec3(0.0f);
-    scene.camera.lookAt = glm::vec3(0, 0, -1);
-    scene.finalize();
-    RenderSettings settings = smallSettings();
-    settings.photonCapacity = 1.0f;
-    settings.maxPhotonDepth = 64;
-    settings.radius = 0.2f;
-    render(scene, settings);
+    render(test::overflowingScene(), test::overflowingSettings(smallSettings()));
     const FrameStats& stats = vulkan_->lastFrameStats();
     for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
         EXPECT_LE(stats.stored[m], stats.capacity[m]) << "map " << m;
@@ -351,27 +333,13 @@ TEST_F(VulkanBackendTest, TooLargeRequestsAreRefusedBeforeWork) {
     huge.height = static_cast<std::uint32_t>(std::min(16384.0, std::ceil(pixels / 16384.0)));
     vulkan_->setScene(scene);
     vulkan_->setSettings(huge);
-    try {
-        vulkan_->prepare();
-        ADD_FAILURE() << huge.width << "x" << huge.height << " was accepted";
-    } catch (const InputError& e) {
-        std::printf("refused: %s\n", e.what());
-        EXPECT_NE(std::string(e.what()).find("resolution"), std::string::npos) << e.what();
-    }
-    RenderSettings many = smallSettings();
-    many.photonCapacity = 64.0f;
-    many.maxPhotonDepth = 64;
-    many.causticFraction = 0.0f;  // every path a global one, with room for 64 photons
+    test::expectRefused(*vulkan_, std::to_string(huge.width) + "x" + std::to_string(huge.height) + " was accepted",
+                        "resolution");
+    RenderSettings many = test::roomFor64PhotonsPerPath(smallSettings());
     double paths = std::ceil(1.5 * double(limits.perBuffer) / (64.0 * sizeof(Photon)));
     many.photons = static_cast<std::uint32_t>(std::min<double>(paths, PHOTON_PATHS_MAX));
     vulkan_->setSettings(many);
-    try {
-        vulkan_->prepare();
-        ADD_FAILURE() << many.photons << " photons were accepted";
-    } catch (const InputError& e) {
-        std::printf("refused: %s\n", e.what());
-        EXPECT_NE(std::string(e.what()).find("photon"), std::string::npos) << e.what();
-    }
+    test::expectRefused(*vulkan_, std::to_string(many.photons) + " photons were accepted", "photon");
     vulkan_->setSettings(smallSettings());
     vulkan_->renderFrame();
     EXPECT_TRUE(allFinite(vulkan_->image()));

@@ -6,12 +6,12 @@
 
 #include <CLI/CLI.hpp>
 
-#include "core/system/program.h"
-#include "core/system/error.h"
 #include "core/loaders/json_node.h"
+#include "core/system/error.h"
 #include "core/system/output_file.h"
-#include "mesh_shapes.h"
+#include "core/system/program.h"
 #include "glb_writer.h"
+#include "mesh_shapes.h"
 
 namespace photon {
 namespace {

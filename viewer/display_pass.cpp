@@ -27,19 +27,16 @@ VkShaderModule createModule(VkDevice device, const std::uint32_t (&words)[N]) {
 }  // namespace
 
 DisplayPass::DisplayPass(const vk::Context& context, VkFormat format, VkImageLayout finalLayout)
-    : context_(context), finalLayout_(finalLayout) {
+    : context_(context), finalLayout_(finalLayout), pass_(context.device) {
     createRenderPass(format);
     createPipeline();
 }
 
+// The render pass goes first, the pipeline with pass_ after it (a pipeline does not use its
+// render pass once created).
 DisplayPass::~DisplayPass() {
-    VkDevice device = context_.device;
-    vkDeviceWaitIdle(device);
-    vkDestroyPipeline(device, pipeline_, nullptr);
-    vkDestroyPipelineLayout(device, layout_, nullptr);
-    vkDestroyDescriptorPool(device, pool_, nullptr);
-    vkDestroyDescriptorSetLayout(device, setLayout_, nullptr);
-    vkDestroyRenderPass(device, renderPass_, nullptr);
+    vkDeviceWaitIdle(context_.device);
+    vkDestroyRenderPass(context_.device, renderPass_, nullptr);
 }
 
 void DisplayPass::createRenderPass(VkFormat format) {
@@ -95,15 +92,8 @@ void DisplayPass::createPipeline() {
         bindings[b].descriptorCount = 1;
         bindings[b].stageFlags = VK_SHADER_STAGE_FRAGMENT_BIT;
     }
-    VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-    setInfo.bindingCount = 2;
-    setInfo.pBindings = bindings;
-    VK_CHECK(vkCreateDescriptorSetLayout(device, &setInfo, nullptr, &setLayout_));
-
-    layout_ = vk::createPipelineLayout(device, &setLayout_, 1, {VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(DisplayPush)});
-    vk::SingleDescriptorSet descriptors = vk::allocateSingleSet(device, setLayout_, 2);
-    pool_ = descriptors.pool;
-    set_ = descriptors.set;
+    pass_.createSet(bindings, 2);
+    pass_.layout = vk::createPipelineLayout(device, &pass_.setLayout, 1, {VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(DisplayPush)});
 
     VkShaderModule vert = createModule(device, spirv::viewer_display_vert);
     VkShaderModule frag = createModule(device, spirv::viewer_display_frag);
@@ -150,10 +140,10 @@ void DisplayPass::createPipeline() {
     info.pMultisampleState = &multisample;
     info.pColorBlendState = &blending;
     info.pDynamicState = &dynamicState;
-    info.layout = layout_;
+    info.layout = pass_.layout;
     info.renderPass = renderPass_;
     info.subpass = 0;
-    VkResult result = vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline_);
+    VkResult result = vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pass_.pipeline);
     vkDestroyShaderModule(device, vert, nullptr);
     vkDestroyShaderModule(device, frag, nullptr);
     VK_CHECK(result);
@@ -163,7 +153,7 @@ void DisplayPass::setSources(VkBuffer image, VkBuffer dots) {
     VkDescriptorBufferInfo infos[2] = {{image, 0, VK_WHOLE_SIZE}, {dots, 0, VK_WHOLE_SIZE}};
     VkWriteDescriptorSet writes[2] = {{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}, {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}};
     for (std::uint32_t b = 0; b < 2; ++b) {
-        writes[b].dstSet = set_;
+        writes[b].dstSet = pass_.set;
         writes[b].dstBinding = b;
         writes[b].descriptorCount = 1;
         writes[b].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
@@ -185,9 +175,9 @@ void DisplayPass::begin(VkCommandBuffer cmd, const TargetImage& target) {
 }
 
 void DisplayPass::draw(VkCommandBuffer cmd, const DisplayPush& push) {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &set_, 0, nullptr);
-    vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push), &push);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pass_.pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pass_.layout, 0, 1, &pass_.set, 0, nullptr);
+    vkCmdPushConstants(cmd, pass_.layout, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push), &push);
     vkCmdDraw(cmd, 3, 1, 0, 0);
 }
 

@@ -8,18 +8,18 @@
 #include <vulkan/vulkan.h>
 
 #include "glsl/viewer.h"
+#include "pass_pipeline.h"
 #include "target.h"
 #include "vulkan/context.h"
+#include "vulkan/non_copyable.h"
 
 namespace photon::viewer {
 
-class DisplayPass {
+class DisplayPass : vk::NonCopyable {
 public:
     // finalLayout: where the render pass leaves the target (PRESENT_SRC_KHR for a swapchain).
     DisplayPass(const vk::Context& context, VkFormat format, VkImageLayout finalLayout);
     ~DisplayPass();
-    DisplayPass(const DisplayPass&) = delete;
-    DisplayPass& operator=(const DisplayPass&) = delete;
 
     VkRenderPass renderPass() const { return renderPass_; }
     VkImageLayout finalLayout() const { return finalLayout_; }
@@ -40,11 +40,7 @@ private:
     const vk::Context& context_;
     VkImageLayout finalLayout_;
     VkRenderPass renderPass_ = VK_NULL_HANDLE;
-    VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;  // the two buffers, read by the fragment shader
-    VkPipelineLayout layout_ = VK_NULL_HANDLE;          // the set and DisplayPush
-    VkPipeline pipeline_ = VK_NULL_HANDLE;
-    VkDescriptorPool pool_ = VK_NULL_HANDLE;
-    VkDescriptorSet set_ = VK_NULL_HANDLE;
+    PassPipeline pass_;  // the set of the two buffers, read by the fragment shader; the layout adds DisplayPush
 };
 
 }  // namespace photon::viewer

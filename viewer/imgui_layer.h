@@ -8,18 +8,17 @@
 #include <vulkan/vulkan.h>
 
 #include "vulkan/context.h"
+#include "vulkan/non_copyable.h"
 
 struct GLFWwindow;
 
 namespace photon::viewer {
 
-class ImGuiLayer {
+class ImGuiLayer : vk::NonCopyable {
 public:
     // `window` may be null (offscreen). `imageCount`: images the draw data may be in flight for.
     ImGuiLayer(const vk::Context& context, VkRenderPass renderPass, std::uint32_t imageCount, GLFWwindow* window);
     ~ImGuiLayer();
-    ImGuiLayer(const ImGuiLayer&) = delete;
-    ImGuiLayer& operator=(const ImGuiLayer&) = delete;
 
     // Starts a frame of widgets for a display of `size` pixels, `seconds` after the last.
     void newFrame(VkExtent2D size, float seconds);

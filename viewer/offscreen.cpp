@@ -30,21 +30,8 @@ OffscreenTarget::OffscreenTarget(const vk::Context& context, VkExtent2D extent, 
     VK_CHECK(vkAllocateMemory(device, &allocation, nullptr, &memory_));
     VK_CHECK(vkBindImageMemory(device, image_, memory_, 0));
 
-    VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-    viewInfo.image = image_;
-    viewInfo.viewType = VK_IMAGE_VIEW_TYPE_2D;
-    viewInfo.format = kOffscreenFormat;
-    viewInfo.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    VK_CHECK(vkCreateImageView(device, &viewInfo, nullptr, &view_));
-
-    VkFramebufferCreateInfo framebufferInfo{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-    framebufferInfo.renderPass = renderPass;
-    framebufferInfo.attachmentCount = 1;
-    framebufferInfo.pAttachments = &view_;
-    framebufferInfo.width = extent.width;
-    framebufferInfo.height = extent.height;
-    framebufferInfo.layers = 1;
-    VK_CHECK(vkCreateFramebuffer(device, &framebufferInfo, nullptr, &framebuffer_));
+    view_ = createColorView(device, image_, kOffscreenFormat);
+    framebuffer_ = createFramebuffer(device, renderPass, view_, extent);
 }
 
 OffscreenTarget::~OffscreenTarget() {

@@ -6,16 +6,15 @@
 
 #include "target.h"
 #include "vulkan/context.h"
+#include "vulkan/non_copyable.h"
 
 namespace photon::viewer {
 
-class OffscreenTarget {
+class OffscreenTarget : vk::NonCopyable {
 public:
     // A kOffscreenFormat image of `extent` with a framebuffer for `renderPass`.
     OffscreenTarget(const vk::Context& context, VkExtent2D extent, VkRenderPass renderPass);
     ~OffscreenTarget();
-    OffscreenTarget(const OffscreenTarget&) = delete;
-    OffscreenTarget& operator=(const OffscreenTarget&) = delete;
 
     TargetImage target() const { return {image_, framebuffer_, extent_, 0}; }
 

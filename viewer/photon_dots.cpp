@@ -3,7 +3,6 @@
 #include "glsl/dispatch.h"
 #include "glsl/viewer.h"
 #include "shared/bindings.h"
-#include "vulkan/check.h"
 #include "vulkan/objects.h"
 #include "vulkan/pipelines.h"
 
@@ -12,34 +11,21 @@ namespace spirv {
 #include "viewer_dots.spv.h"
 }  // namespace spirv
 
-PhotonDots::PhotonDots(const vk::Context& context, const vk::VulkanBackend& backend) : context_(context) {
+PhotonDots::PhotonDots(const vk::Context& context, const vk::VulkanBackend& backend)
+    : context_(context), pass_(context.device) {
     VkDevice device = context.device;
     VkDescriptorSetLayoutBinding binding{DOTS_BINDING_DOTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
                                          VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
-    VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-    setInfo.bindingCount = 1;
-    setInfo.pBindings = &binding;
-    VK_CHECK(vkCreateDescriptorSetLayout(device, &setInfo, nullptr, &setLayout_));
-
+    pass_.createSet(&binding, 1);
     // Set 0 is the backend's layout, so that its descriptor set binds here unchanged.
-    VkDescriptorSetLayout sets[2] = {backend.pipelines().setLayout, setLayout_};
-    layout_ = vk::createPipelineLayout(device, sets, 2, {VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(DotsPush)});
-    vk::SingleDescriptorSet descriptors = vk::allocateSingleSet(device, setLayout_, 1);
-    pool_ = descriptors.pool;
-    set_ = descriptors.set;
-
-    pipeline_ = vk::createComputePipeline(device, layout_, spirv::viewer_dots, sizeof(spirv::viewer_dots));
+    VkDescriptorSetLayout sets[2] = {backend.pipelines().setLayout, pass_.setLayout};
+    pass_.layout = vk::createPipelineLayout(device, sets, 2, {VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(DotsPush)});
+    pass_.pipeline = vk::createComputePipeline(device, pass_.layout, spirv::viewer_dots, sizeof(spirv::viewer_dots));
     resize(1, 1);
 }
 
-PhotonDots::~PhotonDots() {
-    VkDevice device = context_.device;
-    vkDeviceWaitIdle(device);
-    vkDestroyPipeline(device, pipeline_, nullptr);
-    vkDestroyPipelineLayout(device, layout_, nullptr);
-    vkDestroyDescriptorPool(device, pool_, nullptr);
-    vkDestroyDescriptorSetLayout(device, setLayout_, nullptr);
-}
+// No frame uses the dot buffer when it goes (pass_ waits for the device too, but after it).
+PhotonDots::~PhotonDots() { vkDeviceWaitIdle(context_.device); }
 
 void PhotonDots::resize(std::uint32_t width, std::uint32_t height) {
     VkDeviceSize bytes = VkDeviceSize(width) * height * 3 * sizeof(std::uint32_t);
@@ -49,7 +35,7 @@ void PhotonDots::resize(std::uint32_t width, std::uint32_t height) {
     dots_ = vk::Buffer();
     dots_ = vk::Buffer(context_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                        vk::MemoryUse::Device);
-    vk::writeBufferDescriptor(context_.device, set_, DOTS_BINDING_DOTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, dots_.handle(),
+    vk::writeBufferDescriptor(context_.device, pass_.set, DOTS_BINDING_DOTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, dots_.handle(),
                               bytes);
 }
 
@@ -65,13 +51,13 @@ void PhotonDots::record(VkCommandBuffer cmd, const vk::VulkanBackend& backend, f
     // One invocation per stored photon of each map, through the group counts that the frame's
     // gridArgs wrote into the counters (its barriers already made them, the photon maps and the
     // hit points visible to later indirect dispatches and compute shaders).
-    VkDescriptorSet sets[2] = {backend.pipelines().set, set_};
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 2, sets, 0, nullptr);
+    VkDescriptorSet sets[2] = {backend.pipelines().set, pass_.set};
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass_.pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass_.layout, 0, 2, sets, 0, nullptr);
     VkBuffer counters = backend.buffer(BINDING_COUNTERS);
     for (std::uint32_t map = 0; map < MAP_COUNT; ++map) {
         DotsPush push{map, brightness, depthTolerance, 0.0f};
-        vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+        vkCmdPushConstants(cmd, pass_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
         vkCmdDispatchIndirect(cmd, counters, (GRID_ARGS + 3 * map) * sizeof(std::uint32_t));
     }
     // The dots are complete before the display pass's fragment shader reads them.

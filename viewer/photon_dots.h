@@ -9,17 +9,17 @@
 
 #include <vulkan/vulkan.h>
 
+#include "pass_pipeline.h"
 #include "vulkan/backend.h"
 #include "vulkan/memory.h"
+#include "vulkan/non_copyable.h"
 
 namespace photon::viewer {
 
-class PhotonDots {
+class PhotonDots : vk::NonCopyable {
 public:
     PhotonDots(const vk::Context& context, const vk::VulkanBackend& backend);
     ~PhotonDots();
-    PhotonDots(const PhotonDots&) = delete;
-    PhotonDots& operator=(const PhotonDots&) = delete;
 
     // Sizes the dot buffer for a width × height image (three uint per pixel). Only while no
     // submitted frame uses it.
@@ -33,12 +33,8 @@ public:
 
 private:
     const vk::Context& context_;
-    VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;  // the dot buffer
-    VkPipelineLayout layout_ = VK_NULL_HANDLE;          // the backend's set, ours, DotsPush
-    VkPipeline pipeline_ = VK_NULL_HANDLE;
-    VkDescriptorPool pool_ = VK_NULL_HANDLE;
-    VkDescriptorSet set_ = VK_NULL_HANDLE;
-    vk::Buffer dots_;                                   // three fixed-point uint per pixel
+    PassPipeline pass_;  // the set of the dot buffer; the layout: the backend's set, ours, DotsPush
+    vk::Buffer dots_;    // three fixed-point uint per pixel
 };
 
 }  // namespace photon::viewer

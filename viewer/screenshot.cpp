@@ -4,8 +4,8 @@
 #include <vector>
 
 
-#include "core/system/error.h"
 #include "core/image/image.h"
+#include "core/system/error.h"
 
 namespace photon::viewer {
 namespace {

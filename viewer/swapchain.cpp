@@ -103,20 +103,8 @@ void Swapchain::create(VkExtent2D size, VkRenderPass renderPass, bool vsync) {
     for (std::uint32_t i = 0; i < count; ++i) {
         Image& image = images_[i];
         image.image = images[i];
-        VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-        viewInfo.image = image.image;
-        viewInfo.viewType = VK_IMAGE_VIEW_TYPE_2D;
-        viewInfo.format = format_.format;
-        viewInfo.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-        VK_CHECK(vkCreateImageView(device, &viewInfo, nullptr, &image.view));
-        VkFramebufferCreateInfo framebufferInfo{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-        framebufferInfo.renderPass = renderPass;
-        framebufferInfo.attachmentCount = 1;
-        framebufferInfo.pAttachments = &image.view;
-        framebufferInfo.width = extent_.width;
-        framebufferInfo.height = extent_.height;
-        framebufferInfo.layers = 1;
-        VK_CHECK(vkCreateFramebuffer(device, &framebufferInfo, nullptr, &image.framebuffer));
+        image.view = createColorView(device, image.image, format_.format);
+        image.framebuffer = createFramebuffer(device, renderPass, image.view, extent_);
         VkSemaphoreCreateInfo semaphoreInfo{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
         VK_CHECK(vkCreateSemaphore(device, &semaphoreInfo, nullptr, &image.renderFinished));
     }

@@ -13,12 +13,10 @@
 
 namespace photon::viewer {
 
-class Swapchain {
+class Swapchain : vk::NonCopyable {
 public:
     explicit Swapchain(const vk::Context& context);
     ~Swapchain();
-    Swapchain(const Swapchain&) = delete;
-    Swapchain& operator=(const Swapchain&) = delete;
 
     // A UNORM 8-bit format the surface offers (see target.h), in the sRGB colour space.
     VkSurfaceFormatKHR format() const { return format_; }

@@ -18,4 +18,10 @@ struct TargetImage {
 // itself (as photon-render's PNG writer does) and Dear ImGui expects its colours stored as given.
 constexpr VkFormat kOffscreenFormat = VK_FORMAT_B8G8R8A8_UNORM;
 
+// A 2D view of the colour of `image` (one level, one layer), in `format`.
+VkImageView createColorView(VkDevice device, VkImage image, VkFormat format);
+
+// A framebuffer of `view` alone, of `extent`, for `renderPass` (the display pass's).
+VkFramebuffer createFramebuffer(VkDevice device, VkRenderPass renderPass, VkImageView view, VkExtent2D extent);
+
 }  // namespace photon::viewer

@@ -37,12 +37,10 @@
 
 namespace photon::viewer {
 
-class Viewer {
+class Viewer : vk::NonCopyable {
 public:
     explicit Viewer(const ViewerOptions& options);
     ~Viewer();
-    Viewer(const Viewer&) = delete;
-    Viewer& operator=(const Viewer&) = delete;
 
     // Runs until the window closes (or the scripted frames are done). Throws on failure.
     void run();

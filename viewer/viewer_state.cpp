@@ -8,9 +8,9 @@
 #include <stdexcept>
 #include <utility>
 
-#include "core/system/error.h"
 #include "core/loaders/scene_loader.h"
 #include "core/settings/setting_specs.h"
+#include "core/system/error.h"
 
 namespace photon::viewer {
 namespace {

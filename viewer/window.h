@@ -9,6 +9,8 @@
 
 #include <vulkan/vulkan.h>
 
+#include "vulkan/non_copyable.h"
+
 struct GLFWwindow;
 
 namespace photon::viewer {
@@ -18,12 +20,10 @@ struct KeyPress {
     int mods = 0;  // GLFW_MOD_*
 };
 
-class Window {
+class Window : vk::NonCopyable {
 public:
     Window(std::uint32_t width, std::uint32_t height, const std::string& title);
     ~Window();
-    Window(const Window&) = delete;
-    Window& operator=(const Window&) = delete;
 
     // VK_KHR_surface and the window system's surface extension.
     static std::vector<const char*> requiredInstanceExtensions();

@@ -12,12 +12,12 @@
 #include <vulkan/vulkan.h>
 
 #include "buffer_plan.h"
-#include "scan.h"
 #include "context.h"
 #include "core/frame/backend.h"
 #include "memory.h"
 #include "photon_sort.h"
 #include "pipelines.h"
+#include "scan.h"
 
 namespace photon::vk {
 

@@ -11,6 +11,8 @@
 
 #include <vulkan/vulkan.h>
 
+#include "non_copyable.h"
+
 namespace photon::vk {
 
 struct ContextOptions {
@@ -44,12 +46,10 @@ const DeviceCandidate& pickDevice(const std::vector<DeviceCandidate>& candidates
 // An instance with no layers, for counting devices; throws if there is no Vulkan loader or driver.
 VkInstance createBareInstance();
 
-class Context {
+class Context : NonCopyable {
 public:
     explicit Context(const ContextOptions& options);
     ~Context();
-    Context(const Context&) = delete;
-    Context& operator=(const Context&) = delete;
 
     // Throws RuntimeError with every validation message since the last call (each was also
     // printed when it arrived). `where` says what was running.

@@ -53,12 +53,10 @@ void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags srcStages, VkAccess
                    VkPipelineStageFlags dstStages, VkAccessFlags dstAccess);
 
 // Commands run once and waited for: uploads, readbacks, anything outside a frame.
-class Transfers {
+class Transfers : NonCopyable {
 public:
     explicit Transfers(const Context& context);
     ~Transfers();
-    Transfers(const Transfers&) = delete;
-    Transfers& operator=(const Transfers&) = delete;
 
     // Records commands with `record`, submits them and waits until they are done.
     void run(const std::function<void(VkCommandBuffer)>& record);

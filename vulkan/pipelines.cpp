@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "check.h"
-#include "objects.h"
 #include "glsl/dispatch.h"
+#include "objects.h"
 #include "shared/bindings.h"
 
 namespace photon::vk {

@@ -44,12 +44,10 @@ VkPipeline createComputePipeline(VkDevice device, VkPipelineLayout layout, const
 void dispatch(VkCommandBuffer cmd, const class Pipelines& pipelines, Shader shader, std::uint64_t items,
               std::uint32_t groupSize);
 
-class Pipelines {
+class Pipelines : NonCopyable {
 public:
     explicit Pipelines(const Context& context);
     ~Pipelines();
-    Pipelines(const Pipelines&) = delete;
-    Pipelines& operator=(const Pipelines&) = delete;
 
     // Points binding `binding` of the descriptor set at a whole buffer. Only between frames.
     void writeDescriptor(std::uint32_t binding, VkBuffer buffer, VkDeviceSize size);

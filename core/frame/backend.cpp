@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "core/system/error.h"
 #include "core/settings/setting_specs.h"
+#include "core/system/error.h"
 
 namespace photon {
 

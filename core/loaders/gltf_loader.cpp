@@ -20,12 +20,12 @@
 #define TINYGLTF_NO_STB_IMAGE_WRITE
 #include <tiny_gltf.h>
 
-#include "core/system/error.h"
 #include "core/loaders/gltf_compression.h"
 #include "core/loaders/gltf_document.h"
 #include "core/loaders/model_loader.h"
-#include "shared/math.h"
 #include "core/loaders/texture_loader.h"
+#include "core/system/error.h"
+#include "shared/math.h"
 
 namespace photon {
 namespace {

@@ -12,8 +12,8 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
-#include "core/system/error.h"
 #include "core/settings/setting_specs.h"
+#include "core/system/error.h"
 
 namespace photon {
 

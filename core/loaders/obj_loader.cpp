@@ -9,10 +9,10 @@
 
 #include <tiny_obj_loader.h>
 
-#include "core/system/error.h"
 #include "core/loaders/model_loader.h"
-#include "shared/math.h"
 #include "core/loaders/texture_loader.h"
+#include "core/system/error.h"
+#include "shared/math.h"
 
 namespace photon {
 namespace {

@@ -17,12 +17,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "embedded_scene.h"
-#include "core/system/error.h"
-#include "core/system/input_file.h"
 #include "core/loaders/json_node.h"
 #include "core/loaders/model_loader.h"
 #include "core/settings/setting_specs.h"
+#include "core/system/error.h"
+#include "core/system/input_file.h"
+#include "embedded_scene.h"
 #include "shared/constants.h"
 #include "shared/math.h"
 

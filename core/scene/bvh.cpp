@@ -13,9 +13,9 @@
 #include <mutex>
 #include <thread>
 
+#include "core/scene/scene.h"
 #include "core/system/error.h"
 #include "core/system/parallel.h"
-#include "core/scene/scene.h"
 #include "shared/intersect.h"
 
 namespace photon {

@@ -7,8 +7,8 @@
 #include <stdexcept>
 #include <limits>
 
-#include "core/system/error.h"
 #include "core/frame/frame_setup.h"
+#include "core/system/error.h"
 
 namespace photon {
 namespace {

@@ -7,8 +7,8 @@
 #include <cerrno>
 #include <cstring>
 
-#include "core/system/error.h"
 #include "core/loaders/json_node.h"
+#include "core/system/error.h"
 
 namespace photon {
 namespace {

@@ -5,8 +5,8 @@
 #include <map>
 #include <string>
 
-#include "core/system/error.h"
 #include "core/loaders/model_loader.h"
+#include "core/system/error.h"
 
 namespace photon::fuzz {
 

@@ -11,9 +11,9 @@
 #include <cstdlib>
 #include <string>
 
-#include "core/system/error.h"
 #include "companions.h"
 #include "core/loaders/model_loader.h"
+#include "core/system/error.h"
 #include "render_check.h"
 
 namespace photon::fuzz {

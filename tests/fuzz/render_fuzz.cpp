@@ -20,10 +20,10 @@
 #include <string>
 
 #include "companions.h"
-#include "core/system/error.h"
 #include "core/loaders/model_loader.h"
 #include "core/loaders/scene_loader.h"
 #include "core/settings/setting_specs.h"
+#include "core/system/error.h"
 #include "render_check.h"
 
 namespace {

@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <string>
 
-#include "core/system/error.h"
 #include "core/loaders/scene_loader.h"
+#include "core/system/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     try {

@@ -1,0 +1,37 @@
+// Rendering in the tests: settings for a small image, and a backend run for a number of frames
+// (the steps that nearly every render test takes before it looks at the result).
+#pragma once
+
+#include <cstdint>
+
+#include "apps/backends.h"
+
+namespace photon::test {
+
+// `base` (a scene's own settings, or the defaults) at width × height, with `photons` photon paths
+// a frame.
+inline RenderSettings sizedSettings(RenderSettings base, std::uint32_t width, std::uint32_t height, std::uint32_t photons) {
+    base.width = width;
+    base.height = height;
+    base.photons = photons;
+    return base;
+}
+
+// `frames` frames of the scene on `backend`, counted from its first: setting the scene and the
+// settings restarts the frames and the accumulation.
+inline void renderFrames(Backend& backend, const Scene& scene, const RenderSettings& settings, std::uint32_t frames) {
+    backend.setScene(scene);
+    backend.setSettings(settings);
+    for (std::uint32_t f = 0; f < frames; ++f) {
+        backend.renderFrame();
+    }
+}
+
+// The CPU reference's accumulated image after `frames` frames of the scene.
+inline Image renderOnCpu(const Scene& scene, const RenderSettings& settings, std::uint32_t frames = 1) {
+    auto backend = createBackend("cpu");
+    renderFrames(*backend, scene, settings, frames);
+    return backend->image();
+}
+
+}  // namespace photon::test
