@@ -279,6 +279,21 @@ TEST(ObjLoader, DiffuseMapIsDecodedFromSrgbToLinear) {
     expectNear(texel(scene, m.albedoTexture, 1, 0), glm::vec3(0.0f, 0.0f, 1.0f), 1e-4f);
 }
 
+// A 16-bit PPM is refused by name: stb_image's conversion of it to four channels overflows its
+// buffer (the render fuzzer found it through an MTL's map_Kd).
+TEST(ObjLoader, SixteenBitImagesOtherThanPngAreRefused) {
+    Files files;
+    files.files["a.mtl"] = "newmtl tex\nKd 1 1 1\nmap_Kd tex.ppm\n";
+    files.files["tex.ppm"] = std::string("P6\n2 2\n65535\n") + std::string(2 * 2 * 3 * 2, '\x7f');
+    Scene scene;
+    try {
+        load(scene, "a.obj", "mtllib a.mtl\nusemtl tex\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", files);
+        FAIL() << "a 16-bit PPM was accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("tex.ppm: a 16-bit image that is not a PNG"), std::string::npos) << e.what();
+    }
+}
+
 TEST(ObjLoader, SceneMaterialOverridesTheFiles) {
     Files files;
     files.files["a.mtl"] = "newmtl red\nKd 1 0 0\n";

@@ -89,6 +89,13 @@ std::uint32_t addImageTexture(Scene& scene, const std::string& bytes, std::uint3
         throw tooLarge(std::uint64_t(std::max(width, 0)), std::uint64_t(std::max(height, 0)));
     }
     bool sixteen = stbi_is_16_bit_from_memory(data, size) != 0;
+    // stb_image converts 16-bit PNM and PSD images to four channels with its 8-bit converter, into
+    // a buffer half the size it then reads (found by fuzzing). 16-bit images are read from PNG only.
+    bool png = bytes.size() >= 8 && bytes.compare(0, 8, "\x89PNG\r\n\x1a\n", 8) == 0;
+    if (sixteen && !png) {
+        throw InputError(where + ": a 16-bit image that is not a PNG; Photon reads 16 bits a channel from PNG only "
+                                 "(save it with 8 bits a channel, or as a PNG)");
+    }
     std::vector<glm::uvec2> texels(std::size_t(width) * std::size_t(height));
     int w = 0;
     int h = 0;
