@@ -40,7 +40,9 @@
     X(FRAME, 21u, vec4, frameRadiance, RW, PIXEL)                              \
     X(ACCUMULATION, 22u, vec4, accumulation, RW, PIXEL)                        \
     X(SPPM_PIXELS, 23u, SppmPixel, sppmPixels, RW, SPPM_PIXEL)              \
-    X(INFINITE_LIGHTS, 24u, Light, infiniteLights, RO, SCENE)
+    X(INFINITE_LIGHTS, 24u, Light, infiniteLights, RO, SCENE)                  \
+    X(ENVIRONMENT_TEXELS, 25u, uint, environmentTexels, RO, SCENE)             \
+    X(ENVIRONMENT_CDF, 26u, float, environmentCdf, RO, SCENE)
 
 PH_NAMESPACE_BEGIN
 

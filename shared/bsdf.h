@@ -131,6 +131,37 @@ PH_FN BsdfSample sampleBsdfLobes(PH_IN(Material) m, vec3 wo, vec3 n, vec3 ns, ui
     return absorbAcrossSurface(bs, n, side, transmits);
 }
 
+// The density per solid angle with which sampleBsdf draws wi, over the directions on wo's side
+// (n: the shading normal facing wo). With evalBsdf it makes the BSDF one strategy of multiple
+// importance sampling; the delta lobes of mirrors and glass have no density, so 0 for them.
+PH_FN float pdfBsdf(PH_IN(Material) m, vec3 wo, vec3 wi, vec3 n) {
+    float cosI = dot(wi, n);
+    float cosO = dot(wo, n);
+    if (cosI <= 0.0f || cosO <= 0.0f) {
+        return 0.0f;
+    }
+    switch (m.type) {
+        case MATERIAL_DIFFUSE:
+            return cosI * INV_PI;
+        case MATERIAL_GLOSSY: {
+            float pSpecular = specularLobeProbability(m);
+            vec3 h = unitVector(wi + wo);
+            float cosH = dot(h, n);
+            float specular = ggxD(cosH, m.roughness) * cosH / (4.0f * dot(wo, h));
+            return pSpecular * specular + (1.0f - pSpecular) * cosI * INV_PI;
+        }
+        case MATERIAL_REFLECTIVE:
+            return (1.0f - specularLobeProbability(m)) * cosI * INV_PI;  // the base under the coat
+        case MATERIAL_PBR:
+            return pdfPbr(m, wo, wi, n, pbrEvaluatedLobes(m));
+        case MATERIAL_MIRROR:
+        case MATERIAL_GLASS:
+        case MATERIAL_EMITTER:
+            break;
+    }
+    return 0.0f;
+}
+
 // Sample wi from everything the material does (the stored lobes alone for a storedPart()).
 PH_FN BsdfSample sampleBsdf(PH_IN(Material) m, vec3 wo, vec3 n, vec3 ns, PH_INOUT(Rng) rng) {
     return sampleBsdfLobes(m, wo, n, ns, pbrEvaluatedLobes(m), rng);

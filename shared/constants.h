@@ -45,7 +45,7 @@ PH_CONST uint LIGHT_SPHERE = 2u;       // a Lambertian sphere
 PH_CONST uint LIGHT_QUAD = 3u;         // a one-sided Lambertian parallelogram
 PH_CONST uint LIGHT_TRIANGLES = 4u;    // the emissive triangles of the scene, sampled by power
 PH_CONST uint LIGHT_DIRECTIONAL = 5u;  // parallel light from infinity (the sun), over the scene's bounds
-PH_CONST uint LIGHT_BACKGROUND = 6u;   // uniform radiance from every direction that leaves the scene
+PH_CONST uint LIGHT_ENVIRONMENT = 6u;  // radiance from every direction that leaves the scene: uniform or a map
 PH_CONST uint LIGHT_TYPE_COUNT = 7u;
 
 // Emission profile of a point light (Light::profile).
@@ -113,7 +113,9 @@ PH_CONST uint COUNTER_STORED = 0u;                   // photons appended to each
 PH_CONST uint COUNTER_SPPM_RADIUS = MAP_COUNT;       // sppm: the largest radius of a pixel with photons (float bits)
 PH_CONST uint SPPM_RADIUS_BINS = 64u;                // sppm: pixels with photons by the binary exponent of their radius
 PH_CONST uint COUNTER_SPPM_HISTOGRAM = 2u * MAP_COUNT;  // each map's bins, in map order
-PH_CONST uint COUNTER_COUNT = COUNTER_SPPM_HISTOGRAM + MAP_COUNT * SPPM_RADIUS_BINS;
+PH_CONST uint COUNTER_ENVIRONMENT_PATHS = COUNTER_SPPM_HISTOGRAM + MAP_COUNT * SPPM_RADIUS_BINS;  // photons the environment emitted
+PH_CONST uint COUNTER_ENVIRONMENT_HITS = COUNTER_ENVIRONMENT_PATHS + 1u;  // ... whose first ray met the scene
+PH_CONST uint COUNTER_COUNT = COUNTER_ENVIRONMENT_HITS + 1u;
 
 // sppm: photon counts per pixel, a slot per map (a multiple of 4: SppmPixel stays 16-byte sized).
 PH_CONST uint SPPM_COUNT_SLOTS = 4u;
@@ -132,6 +134,7 @@ PH_CONST uint PATH_ALIVE = 1u;
 PH_CONST uint PATH_SPECULAR_ONLY = 2u;  // every bounce so far was a mirror or glass interaction
 PH_CONST uint PATH_CAUSTIC_PASS = 4u;   // emitted towards a specular object for the caustic map
 PH_CONST uint PATH_FROM_TARGET = 8u;    // its first surface was a caustic target (see photon_trace.h)
+PH_CONST uint PATH_FROM_ENVIRONMENT = 16u;  // emitted by the environment (counted: COUNTER_ENVIRONMENT_*)
 
 // FrameParams::flags bits.
 PH_CONST uint FLAG_PIXEL_CENTER = 1u;    // one ray through each pixel centre: no jitter, no lens

@@ -51,26 +51,64 @@ PH_FN vec3 projectToPixel(PH_IN(Camera) camera, vec3 point, uint width, uint hei
     return vec3(x, y, z);
 }
 
-// Reflected direct light at x from every light, lightSamples shadow rays each. ns is the shading
-// normal and ng the geometric one, both facing wo; light from behind the geometric surface is not
-// reflected, and shadow rays leave from its side.
+// Whether a shadow ray from x (geometric normal ng, facing the ray) towards `point` reaches it.
+PH_FN bool shadowRayReaches(BUF_PARAM vec3 x, vec3 ng, vec3 direction, vec3 point) {
+    // The shadow ray runs from where it starts, lifted off the surface, to the point on the
+    // light: measured from x instead, a grazing ray would end beyond the light's surface.
+    vec3 origin = offsetRayOrigin(x, ng, direction);
+    vec3 toLight = point - origin;
+    float distance = sqrt(dot(toLight, toLight));
+    return !traceOccluded(BUF_ARG origin, toLight * (1.0f / distance), distance * (1.0f - 1.0e-4f));
+}
+
+// Reflected direct light at x from the environment, by multiple importance sampling of its map
+// and of the BSDF (Veach 1997, the power heuristic): one shadow ray each. The map finds a small
+// bright sky or sun, the BSDF a glossy highlight of a broad one. Five draws.
+PH_FN vec3 environmentDirectLight(BUF_PARAM PH_IN(Light) light, vec3 x, vec3 ns, vec3 ng, vec3 wo, PH_IN(Material) m,
+                                  PH_INOUT(Rng) rng) {
+    vec3 sum = vec3(0.0f);
+    LightSample ls = sampleDirectLight(BUF_ARG light, x, rng);
+    float cosine = dot(ns, ls.direction);
+    if (cosine > 0.0f && dot(ng, ls.direction) > 0.0f && !isBlack(ls.radiance) &&
+        shadowRayReaches(BUF_ARG x, ng, ls.direction, ls.point)) {
+        float weight = powerHeuristic(ls.pdf, pdfBsdf(m, wo, ls.direction, ns));
+        sum += evalBsdf(m, wo, ls.direction, ns) * ls.radiance * (cosine * weight);
+    }
+    BsdfSample bs = sampleBsdf(m, wo, ng, ns, rng);
+    vec3 wi = bs.direction;
+    float cosI = dot(ns, wi);
+    float pdf = pdfBsdf(m, wo, wi, ns);
+    if (bs.lobe == LOBE_NONE || cosI <= 0.0f || dot(ng, wi) <= 0.0f || !(pdf > 0.0f)) {
+        return sum;
+    }
+    vec3 radiance = environmentRadiance(BUF_ARG light, wi);
+    vec3 far = x + wi * (2.0f * (length(x - boundingCenter(light)) + boundingRadius(light)));
+    if (!isBlack(radiance) && shadowRayReaches(BUF_ARG x, ng, wi, far)) {
+        float weight = powerHeuristic(pdf, environmentPdf(BUF_ARG light, wi));
+        sum += evalBsdf(m, wo, wi, ns) * radiance * (cosI * weight / pdf);
+    }
+    return sum;
+}
+
+// Reflected direct light at x from every light, lightSamples shadow rays each (two for the
+// environment). ns is the shading normal and ng the geometric one, both facing wo; light from
+// behind the geometric surface is not reflected, and shadow rays leave from its side.
 PH_FN vec3 directLight(BUF_PARAM vec3 x, vec3 ns, vec3 ng, vec3 wo, PH_IN(Material) m, PH_INOUT(Rng) rng) {
     vec3 sum = vec3(0.0f);
     uint samples = BUF(params).lightSamples;
     for (uint l = 0u; l < BUF(params).scene.lightCount; ++l) {
         Light light = BUF(lights)[l];
         for (uint j = 0u; j < samples; ++j) {
+            if (light.type == LIGHT_ENVIRONMENT) {
+                sum += environmentDirectLight(BUF_ARG light, x, ns, ng, wo, m, rng);
+                continue;
+            }
             LightSample ls = sampleDirectLight(BUF_ARG light, x, rng);
             float cosine = dot(ns, ls.direction);
             if (cosine <= 0.0f || dot(ng, ls.direction) <= 0.0f || isBlack(ls.radiance)) {
                 continue;
             }
-            // The shadow ray runs from where it starts, lifted off the surface, to the point on the
-            // light: measured from x instead, a grazing ray would end beyond the light's surface.
-            vec3 origin = offsetRayOrigin(x, ng, ls.direction);
-            vec3 toLight = ls.point - origin;
-            float distance = sqrt(dot(toLight, toLight));
-            if (!traceOccluded(BUF_ARG origin, toLight * (1.0f / distance), distance * (1.0f - 1.0e-4f))) {
+            if (shadowRayReaches(BUF_ARG x, ng, ls.direction, ls.point)) {
                 sum += evalBsdf(m, wo, ls.direction, ns) * ls.radiance * cosine;
             }
         }
@@ -131,7 +169,11 @@ PH_FN HitPoint tracePixel(BUF_PARAM uint pixel) {
     for (uint depth = 0u; depth < BUF(params).maxEyeDepth; ++depth) {
         Hit hit;
         if (!traceClosest(BUF_ARG ray, hit)) {
-            hp.direct += weight * infiniteRadiance(BUF_ARG ray.direction);
+            // Seen by the camera or through mirrors and glass; after a glossy bounce, direct light
+            // has counted an environment that lights the scene already.
+            if (!(emittersSampled && BUF(params).scene.environmentLight != NONE)) {
+                hp.direct += weight * infiniteRadiance(BUF_ARG ray.direction);
+            }
             break;
         }
         SurfacePoint sp = surfaceAt(BUF_ARG hit);

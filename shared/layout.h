@@ -99,7 +99,7 @@ struct PH_ALIGN16 Light {
     vec3 power; float extent;      // emitted flux Φ per channel [W]; a length (sphereRadius, boundingRadius)
     vec3 axis; float spotOuter;    // a unit direction (spotAxis, quadNormal, ...); spot: 1 - cos of the
                                    // cone's half-angle (kept as 1 - cos: exact for narrow beams)
-    vec3 vectorU; float spotInner; // a vector (quadEdgeU, directionalIrradiance, backgroundRadiance);
+    vec3 vectorU; float spotInner; // a vector (quadEdgeU, directionalIrradiance, environmentScale);
                                    // spot: 1 - cos of the angle where the falloff starts
     vec3 vectorV; float area;      // a vector (quadEdgeV); emitting area (sphere, quad)
     float pickCdf; float pickProbability; uint profile; float falloffMean;
@@ -127,7 +127,8 @@ struct PH_ALIGN16 SceneInfo {
     uint planeCount; uint lightCount; uint targetCount; uint infiniteLight;
     // lightCount: lights[0 .. lightCount) emit photons and are sampled for direct light;
     // infiniteLight: what rays that leave the scene see, infiniteLights[infiniteLight]
-    uint bvhNodeCount; uint linearCount; uint pad0; uint pad1;
+    uint bvhNodeCount; uint linearCount; uint environmentLight; uint pad1;
+    // environmentLight: the environment's index in lights when it lights the scene, else NONE;
     // bvhNodeCount 0: no hierarchy is traversed; linearCount: bounded primitives tested one by one
     // instead (a scene too small for a hierarchy to pay), primitiveRefs[0 .. linearCount)
     uint pad2; uint pad3; uint pad4; uint pad5;  // (FrameParams keeps its layout)
@@ -232,6 +233,7 @@ PH_OFFSET(Camera, focusDistance, 28); PH_OFFSET(Camera, right, 32); PH_OFFSET(Ca
 PH_OFFSET(Camera, up, 48); PH_OFFSET(Camera, aspect, 60);
 PH_SIZE(SceneInfo, 48); PH_OFFSET(SceneInfo, lightCount, 4); PH_OFFSET(SceneInfo, targetCount, 8);
 PH_OFFSET(SceneInfo, infiniteLight, 12); PH_OFFSET(SceneInfo, bvhNodeCount, 16); PH_OFFSET(SceneInfo, linearCount, 20);
+PH_OFFSET(SceneInfo, environmentLight, 24);
 PH_SIZE(GridParams, 48); PH_OFFSET(GridParams, cellSize, 12); PH_OFFSET(GridParams, resolution, 16);
 PH_OFFSET(GridParams, cellOffset, 28); PH_OFFSET(GridParams, photonOffset, 32);
 PH_OFFSET(GridParams, radius, 40); PH_OFFSET(GridParams, keyBits, 44);

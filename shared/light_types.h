@@ -27,7 +27,7 @@ PH_FN uint lightFlags(uint type) {
             return LIGHT_FLAG_AREA;
         case LIGHT_DIRECTIONAL:
             return LIGHT_FLAG_DELTA_DIRECTION;
-        case LIGHT_BACKGROUND:
+        case LIGHT_ENVIRONMENT:
             return LIGHT_FLAG_INFINITE;
     }
     return 0u;  // no such type (Scene::finalize refuses it)
@@ -58,14 +58,23 @@ PH_FN vec3 quadNormal(PH_IN(Light) light) { return light.axis; }  // unit, the e
 // LIGHT_TRIANGLES: emitterFirst and emitterCount, its slice of emissiveTriangles.
 
 // LIGHT_DIRECTIONAL: parallel light over the sphere bounding the scene (Scene::finalize sizes it;
-// power is the flux E·πR² through the sphere's disk).
+// power is the flux E·πR² through the sphere's disk). boundingCenter and boundingRadius serve
+// LIGHT_ENVIRONMENT too.
 PH_FN vec3 directionalDirection(PH_IN(Light) light) { return light.axis; }  // of travel, unit
 PH_FN vec3 directionalIrradiance(PH_IN(Light) light) { return light.vectorU; }  // E on a surface facing it
 PH_FN vec3 boundingCenter(PH_IN(Light) light) { return light.position; }
 PH_FN float boundingRadius(PH_IN(Light) light) { return light.extent; }
 
-// LIGHT_BACKGROUND: the same radiance from every direction.
-PH_FN vec3 backgroundRadiance(PH_IN(Light) light) { return light.vectorU; }
+// LIGHT_ENVIRONMENT (shared/environment.h): radiance from every direction, uniform or from an
+// equirectangular map of environmentWidth × environmentHeight texels (height 0: uniform), times
+// environmentScale; the map's axes in the world (its rotation's columns); boundingCenter and
+// boundingRadius, as for a directional light, place its photons; power is πR² ∫ L dω.
+PH_FN vec3 environmentScale(PH_IN(Light) light) { return light.vectorU; }  // the uniform radiance, or the map's factor
+PH_FN uint environmentWidth(PH_IN(Light) light) { return light.emitterFirst; }
+PH_FN uint environmentHeight(PH_IN(Light) light) { return light.emitterCount; }
+PH_FN vec3 environmentMapX(PH_IN(Light) light) { return light.vectorV; }
+PH_FN vec3 environmentMapY(PH_IN(Light) light) { return light.axis; }  // the map's zenith in the world
+PH_FN vec3 environmentMapZ(PH_IN(Light) light) { return cross(light.vectorV, light.axis); }
 
 PH_NAMESPACE_END
 

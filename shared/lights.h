@@ -5,6 +5,7 @@
 #ifndef PHOTON_SHARED_LIGHTS_H
 #define PHOTON_SHARED_LIGHTS_H
 
+#include "environment.h"
 #include "intersect.h"
 #include "light_types.h"
 #include "rng.h"
@@ -19,11 +20,14 @@ struct PhotonEmission {
 };
 
 // Direct-light sample: radiance arriving from `direction`, divided by the solid-angle density,
-// and the point on the light it comes from (what a shadow ray must reach unobstructed).
+// and the point on the light it comes from (what a shadow ray must reach unobstructed). pdf: that
+// density where other strategies could find the same light (the environment's, for multiple
+// importance sampling), else 0.
 struct LightSample {
     vec3 direction;
     vec3 point;
     vec3 radiance;
+    float pdf;
 };
 
 // A cone of directions: axis and 1 - cos of its half-angle (2: the whole sphere).
@@ -81,7 +85,7 @@ PH_FN vec3 pointIntensity(PH_IN(Light) light, vec3 dir) {
         case LIGHT_QUAD:
         case LIGHT_TRIANGLES:
         case LIGHT_DIRECTIONAL:
-        case LIGHT_BACKGROUND:
+        case LIGHT_ENVIRONMENT:
             break;  // no point source: nothing calls this for them
     }
     return vec3(0.0f);
@@ -138,15 +142,16 @@ PH_FN void sampleAreaLight(BUF_PARAM PH_IN(Light) light, float u0, float u1, flo
         case LIGHT_POINT:
         case LIGHT_SPOT:
         case LIGHT_DIRECTIONAL:
-        case LIGHT_BACKGROUND:
+        case LIGHT_ENVIRONMENT:
             break;  // no area: isAreaLight() is false, nothing calls this for them
     }
 }
 
-// The start of a directional light's photon through point (x, y) of the unit disk: on the disk of
-// the scene's bounding sphere, facing its direction of travel, behind everything in the scene.
-PH_FN vec3 directionalOrigin(PH_IN(Light) light, vec2 q) {
-    return boundingCenter(light) + localToWorld(vec3(q.x, q.y, -1.001f), directionalDirection(light)) * boundingRadius(light);
+// The start of a parallel photon travelling along `travel` through point q of the unit disk: on
+// the disk of the scene's bounding sphere (centre, radius) that faces it, behind everything in
+// the scene (directional lights; the environment, per direction).
+PH_FN vec3 parallelOrigin(vec3 center, float radius, vec3 travel, vec2 q) {
+    return center + localToWorld(vec3(q.x, q.y, -1.001f), travel) * radius;
 }
 
 // An area light's photon: a point by area ((u3, u4); u0 picks an emissive triangle), a direction
@@ -192,10 +197,24 @@ PH_FN PhotonEmission emitPhoton(BUF_PARAM PH_IN(Light) light, PH_INOUT(Rng) rng)
             break;
         }
         case LIGHT_DIRECTIONAL:
-            e.origin = directionalOrigin(light, sampleUniformDisk(u1, u2));
             e.direction = directionalDirection(light);
+            e.origin = parallelOrigin(boundingCenter(light), boundingRadius(light), e.direction, sampleUniformDisk(u1, u2));
             e.power = light.power;
             break;
+        case LIGHT_ENVIRONMENT: {
+            // A direction by the map (u1, u2), then a start on the bounding sphere's disk facing
+            // it (u3, u4): density pdf(ω) / (πR²), so the flux is L πR² / pdf(ω) (pbrt-v4's SampleLe).
+            vec3 toward;
+            float pdf;
+            vec3 radiance = sampleEnvironment(BUF_ARG light, u1, u2, toward, pdf);
+            if (pdf > 0.0f) {
+                float radius = boundingRadius(light);
+                e.direction = -toward;
+                e.origin = parallelOrigin(boundingCenter(light), radius, e.direction, sampleUniformDisk(u3, u4));
+                e.power = radiance * (PI * radius * radius / pdf);
+            }
+            break;
+        }
         case LIGHT_SPHERE:
         case LIGHT_QUAD:
             e = emitAreaPhoton(BUF_ARG light, 0.0f, u1, u2, u3, u4);
@@ -205,8 +224,6 @@ PH_FN PhotonEmission emitPhoton(BUF_PARAM PH_IN(Light) light, PH_INOUT(Rng) rng)
             e = emitAreaPhoton(BUF_ARG light, u0, u1, u2, u3, u4);
             break;
         }
-        case LIGHT_BACKGROUND:
-            break;  // emits no photons: it is not among the lights photons are emitted from
     }
     return e;
 }
@@ -237,9 +254,9 @@ PH_FN bool emitterCone(PH_IN(Light) light, vec3 n, PH_OUT(Cone) cone) {
         case LIGHT_DIRECTIONAL:
             cone.axis = directionalDirection(light);
             cone.x = 0.0f;
-            return true;  // one direction (its caustic photons are aimed by emitDirectionalCausticPhoton)
-        case LIGHT_BACKGROUND:
-            return false;  // from everywhere (it emits no photons)
+            return true;  // one direction (its caustic photons are aimed by emitParallelCausticPhoton)
+        case LIGHT_ENVIRONMENT:
+            return false;  // from everywhere (its caustic photons are aimed by emitParallelCausticPhoton)
     }
     return false;  // no such type (Scene::finalize refuses it)
 }
@@ -270,17 +287,14 @@ PH_FN Cone causticCone(vec3 origin, PH_IN(CausticTarget) t, bool clipped, PH_IN(
     return c;
 }
 
-// Photon of the caustic pass of a directional light: its start is drawn from the mixture of the
-// targets' disks as the light sees them (projected along its direction, each weighted by its
-// area), and its power is irradiance / mixture density, which keeps it unbiased. Three draws.
-PH_FN PhotonEmission emitDirectionalCausticPhoton(BUF_PARAM PH_IN(Light) light, PH_INOUT(Rng) rng) {
-    float u1 = rngNext(rng);
-    float u2 = rngNext(rng);
-    float u3 = rngNext(rng);
+// Photon of the caustic pass of parallel light along `travel` of irradiance E (a directional
+// light's; the environment's L / pdf(ω) for a direction it drew): its start is drawn from the
+// mixture of the targets' disks as the light sees them (projected along its direction, each
+// weighted by its area), and its power is irradiance / mixture density, which keeps it unbiased.
+PH_FN PhotonEmission emitParallelCausticPhoton(BUF_PARAM vec3 center, float radius, vec3 travel, vec3 irradiance,
+                                               float u1, float u2, float u3) {
     PhotonEmission e;
-    vec3 center = boundingCenter(light);
-    float radius = boundingRadius(light);
-    e.direction = directionalDirection(light);
+    e.direction = travel;
     e.origin = center;
     e.power = vec3(0.0f);
     uint count = BUF(params).scene.targetCount;
@@ -317,9 +331,34 @@ PH_FN PhotonEmission emitDirectionalCausticPhoton(BUF_PARAM PH_IN(Light) light, 
             pdf += (tk.radius * tk.radius / total) / (PI * tk.radius * tk.radius);
         }
     }
-    e.origin = directionalOrigin(light, q);
-    e.power = directionalIrradiance(light) / pdf;  // irradiance / density
+    e.origin = parallelOrigin(center, radius, travel, q);
+    e.power = irradiance / pdf;  // irradiance / density
     return e;
+}
+
+// Photon of the caustic pass of a directional light or the environment (a direction drawn from
+// its map first). Three draws, five for the environment.
+PH_FN PhotonEmission emitParallelLightCausticPhoton(BUF_PARAM PH_IN(Light) light, PH_INOUT(Rng) rng) {
+    float u1 = rngNext(rng);
+    float u2 = rngNext(rng);
+    float u3 = rngNext(rng);
+    vec3 travel = directionalDirection(light);
+    vec3 irradiance = vec3(0.0f);
+    if (light.type == LIGHT_ENVIRONMENT) {
+        float v1 = rngNext(rng);
+        float v2 = rngNext(rng);
+        vec3 toward;
+        float pdf;
+        vec3 radiance = sampleEnvironment(BUF_ARG light, v1, v2, toward, pdf);
+        if (!(pdf > 0.0f)) {
+            return noEmission();
+        }
+        travel = -toward;
+        irradiance = radiance / pdf;
+    } else {
+        irradiance = directionalIrradiance(light);
+    }
+    return emitParallelCausticPhoton(BUF_ARG boundingCenter(light), boundingRadius(light), travel, irradiance, u1, u2, u3);
 }
 
 // Photon of the caustic pass from a point or area light: its direction is drawn from the mixture
@@ -404,9 +443,8 @@ PH_FN PhotonEmission emitCausticPhoton(BUF_PARAM PH_IN(Light) light, PH_INOUT(Rn
         case LIGHT_TRIANGLES:
             return emitConeCausticPhoton(BUF_ARG light, rng);
         case LIGHT_DIRECTIONAL:
-            return emitDirectionalCausticPhoton(BUF_ARG light, rng);
-        case LIGHT_BACKGROUND:
-            break;  // emits no photons: it is not among the lights photons are emitted from
+        case LIGHT_ENVIRONMENT:
+            return emitParallelLightCausticPhoton(BUF_ARG light, rng);
     }
     return noEmission();
 }
@@ -419,6 +457,7 @@ PH_FN LightSample sampleDirectLight(BUF_PARAM PH_IN(Light) light, vec3 x, PH_INO
     ls.radiance = vec3(0.0f);
     ls.direction = vec3(0.0f, 0.0f, 1.0f);
     ls.point = x;
+    ls.pdf = 0.0f;
     switch (light.type) {
         case LIGHT_POINT:
         case LIGHT_SPOT: {
@@ -468,24 +507,29 @@ PH_FN LightSample sampleDirectLight(BUF_PARAM PH_IN(Light) light, vec3 x, PH_INO
             }
             break;
         }
-        case LIGHT_BACKGROUND:
-            break;  // not sampled: it is not among the lights direct light loops over
+        case LIGHT_ENVIRONMENT: {
+            // By the map; the shadow ray runs out of the bounding sphere.
+            vec3 radiance = sampleEnvironment(BUF_ARG light, u1, u2, ls.direction, ls.pdf);
+            ls.point = x + ls.direction * (2.0f * (length(x - boundingCenter(light)) + boundingRadius(light)));
+            if (ls.pdf > 0.0f) {
+                ls.radiance = radiance / ls.pdf;
+            }
+            break;
+        }
     }
     return ls;
 }
 
 // The radiance that a ray leaving the scene along `direction` brings: the scene's infinite light
-// (SceneInfo::infiniteLight). Eye paths ask it where they miss the scene. It lies outside
-// `lights`, so that photon emission and direct light do not meet it: a uniform background only
-// colours what the camera sees through mirrors and glass (as SceneInfo.background did), and no
-// random number drawn for the lights changes. An infinite light that also emits (an environment
-// map) is one more Light in `lights` as well.
+// (SceneInfo::infiniteLight), the environment. Eye paths ask it where they miss the scene. An
+// environment that lights the scene is also lights[SceneInfo::environmentLight], sampled by
+// photons and shadow rays; one that does not (a `background`) only colours what the camera
+// sees, directly and through mirrors and glass.
 PH_FN vec3 infiniteRadiance(BUF_PARAM vec3 direction) {
-    PH_UNUSED(direction);  // until an infinite light depends on it
     Light light = BUF(infiniteLights)[BUF(params).scene.infiniteLight];
     switch (light.type) {
-        case LIGHT_BACKGROUND:
-            return backgroundRadiance(light);  // the same whatever the direction
+        case LIGHT_ENVIRONMENT:
+            return environmentRadiance(BUF_ARG light, direction);
         case LIGHT_POINT:
         case LIGHT_SPOT:
         case LIGHT_SPHERE:

@@ -60,6 +60,9 @@ PH_FN PhotonPath startPhotonPath(BUF_PARAM uint index) {
     path.power = e.power / (paths * pickProbability);
     path.depth = 0u;
     path.flags = PATH_ALIVE | PATH_SPECULAR_ONLY | (causticPass ? PATH_CAUSTIC_PASS : 0u);
+    if (light.type == LIGHT_ENVIRONMENT) {
+        path.flags |= PATH_FROM_ENVIRONMENT;
+    }
     if (isBlack(path.power)) {
         path.flags = 0u;
     }
@@ -70,7 +73,15 @@ PH_FN PhotonPath startPhotonPath(BUF_PARAM uint index) {
 // maps it belongs to (0: none), then moves the path on or ends it.
 PH_FN uint photonBounce(BUF_PARAM PH_INOUT(PhotonPath) path, PH_OUT(Photon) photon) {
     Hit hit;
-    if (!traceClosest(BUF_ARG makeRay(path.origin, path.direction, FLOAT_MAX), hit)) {
+    bool hits = traceClosest(BUF_ARG makeRay(path.origin, path.direction, FLOAT_MAX), hit);
+    if (path.depth == 0u && (path.flags & PATH_FROM_ENVIRONMENT) != 0u) {
+        // How many of the environment's photons find the scene from its bounding sphere's disks.
+        PH_RESERVE_SLOT(BUF(counters)[COUNTER_ENVIRONMENT_PATHS]);
+        if (hits) {
+            PH_RESERVE_SLOT(BUF(counters)[COUNTER_ENVIRONMENT_HITS]);
+        }
+    }
+    if (!hits) {
         path.flags = 0u;
         return 0u;
     }

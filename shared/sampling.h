@@ -57,6 +57,17 @@ PH_FN float sphereConeX(vec3 origin, vec3 center, float radius) {
     return sin2 / (1.0f + cosMax);
 }
 
+// Veach's power heuristic (β = 2) for a sample drawn with density pa when pb is the density of
+// the other strategy: pa² / (pa² + pb²), written as a ratio so that large densities do not
+// overflow.
+PH_FN float powerHeuristic(float pa, float pb) {
+    if (!(pa > 0.0f)) {
+        return 0.0f;
+    }
+    float r = pb / pa;
+    return 1.0f / (1.0f + r * r);
+}
+
 PH_NAMESPACE_END
 
 #endif

@@ -77,7 +77,7 @@ TEST(SceneLoader, MinimalSceneTakesDefaults) {
     Scene scene = load(sceneWith());
     EXPECT_EQ(scene.camera.fovY, 40.0f);
     EXPECT_EQ(scene.camera.up, glm::vec3(0, 1, 0));
-    EXPECT_EQ(scene.background, glm::vec3(0.0f));
+    EXPECT_EQ(scene.environment.radiance, glm::vec3(0.0f));
     EXPECT_EQ(scene.render.width, RenderSettings{}.width);
     EXPECT_EQ(scene.lights[0].power, glm::vec3(10.0f));  // a number is the same in every channel
     EXPECT_EQ(scene.lights[0].profile, EMIT_ISOTROPIC);

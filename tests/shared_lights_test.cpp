@@ -192,7 +192,7 @@ TEST(LightTypes, EveryTypeHasFlagsAndANameAndNoOtherDoes) {
     }
     EXPECT_EQ(lightFlags(LIGHT_TYPE_COUNT), 0u);
     EXPECT_THROW(lightTypeName(LIGHT_TYPE_COUNT), std::logic_error);
-    EXPECT_EQ(lightFlags(LIGHT_BACKGROUND), LIGHT_FLAG_INFINITE);
+    EXPECT_EQ(lightFlags(LIGHT_ENVIRONMENT), LIGHT_FLAG_INFINITE);
     EXPECT_EQ(lightFlags(LIGHT_DIRECTIONAL), LIGHT_FLAG_DELTA_DIRECTION);
 }
 
@@ -202,7 +202,7 @@ TEST(Finalize, RefusesUnknownLightAndMaterialTypes) {
     s.addPointLight(vec3(0), vec3(1.0f));
     s.lights[0].type = LIGHT_TYPE_COUNT;
     EXPECT_THROW(s.finalize(), std::logic_error);
-    s.lights[0].type = LIGHT_BACKGROUND;  // the background is the scene's, not one of its lights
+    s.lights[0].type = LIGHT_ENVIRONMENT;  // the environment is the scene's, set by setEnvironment
     EXPECT_THROW(s.finalize(), std::logic_error);
     s.lights[0].type = LIGHT_POINT;
     Material odd = makeDiffuse(vec3(0.5f));
@@ -216,12 +216,12 @@ TEST(Finalize, RefusesUnknownLightAndMaterialTypes) {
 TEST(InfiniteLight, RaysThatMissSeeTheBackgroundAndNothingElseDoes) {
     Scene s;
     s.addPointLight(vec3(0), vec3(1.0f));
-    s.background = vec3(0.25f, 0.5f, 2.0f);
+    s.setBackground(vec3(0.25f, 0.5f, 2.0f));
     test::SceneBindings sb(s);
     EXPECT_EQ(sb.scene.lights.size(), 1u);
     EXPECT_EQ(sb.bindings.params.scene.lightCount, 1u);
     ASSERT_EQ(sb.scene.infiniteLights.size(), 1u);
-    EXPECT_EQ(sb.scene.infiniteLights[0].type, LIGHT_BACKGROUND);
+    EXPECT_EQ(sb.scene.infiniteLights[0].type, LIGHT_ENVIRONMENT);
     vec3 seen = infiniteRadiance(sb.bindings, vec3(0, 0, 1));
     EXPECT_EQ(seen, vec3(0.25f, 0.5f, 2.0f));
 }

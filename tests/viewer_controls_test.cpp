@@ -145,13 +145,13 @@ TEST(LightEditor, EditsEveryLightType) {
     expectNear(moved.triangles.back().v0, glm::vec3(0, 1.5f, 0), 1e-6f);  // the emissive triangle
     expectNear(moved.quads.front().corner, glm::vec3(-1, 0, -1), 0.0f);    // the floor stays
     EXPECT_EQ(moved.lights[2].type, LIGHT_TRIANGLES);
-    expectNear(backgroundRadiance(moved.infiniteLights[0]), glm::vec3(0.1f, 0.2f, 0.3f), 0.0f);
+    expectNear(environmentScale(moved.infiniteLights[0]), glm::vec3(0.1f, 0.2f, 0.3f), 0.0f);
 
     editor.reset();
     Scene back = editor.scene();
     expectNear(directionalDirection(back.lights[1]), glm::vec3(0, -1, 0), 0.0f);
     expectNear(back.triangles.back().v0, glm::vec3(0, 1, 0), 0.0f);
-    expectNear(backgroundRadiance(back.infiniteLights[0]), glm::vec3(0.0f), 0.0f);
+    expectNear(environmentScale(back.infiniteLights[0]), glm::vec3(0.0f), 0.0f);
 }
 
 TEST(LightEditor, CornellLightMovesWithTheScene) {

@@ -27,7 +27,7 @@ public:
     glm::vec3 position(std::uint32_t light) const;
     void setPosition(std::uint32_t light, glm::vec3 position);
     void move(std::uint32_t light, glm::vec3 delta) { setPosition(light, position(light) + delta); }
-    // The radiance of rays that leave the scene (its infinite light, LIGHT_BACKGROUND).
+    // The radiance of rays that leave the scene (its infinite light, LIGHT_ENVIRONMENT).
     glm::vec3 background() const { return background_; }
     void setBackground(glm::vec3 radiance) { background_ = radiance; }
     void reset();

@@ -70,7 +70,8 @@ FrameParams makeFrameParams(const Scene& scene, const CameraDesc& camera, const 
     bool linear = scene.primitiveRefs.size() <= LINEAR_PRIMITIVES_MAX;
     info.bvhNodeCount = linear ? 0u : static_cast<std::uint32_t>(scene.bvhNodes.size());
     info.linearCount = linear ? static_cast<std::uint32_t>(scene.primitiveRefs.size()) : 0u;
-    info.infiniteLight = 0u;  // the scene's one, its background (Scene::finalize)
+    info.infiniteLight = 0u;  // the scene's one, its environment (Scene::finalize)
+    info.environmentLight = scene.environmentLight;
 
     glm::vec3 extent = scene.boundsMax - scene.boundsMin;
     float cube = std::max({extent.x, extent.y, extent.z});

@@ -425,7 +425,7 @@ Scene loadSceneJson(const std::string& text, const std::string& sourceName, cons
     }
     scene.camera = readCamera(root["camera"]);
     if (root.has("background")) {
-        scene.background = root["background"].rgb(kNonNegative);
+        scene.setBackground(root["background"].rgb(kNonNegative));
     }
     readMaterials(scene, root["materials"]);
     for (const Node& object : root["objects"].elements()) {

@@ -378,7 +378,7 @@ const char* lightTypeName(std::uint32_t type) {
         case LIGHT_QUAD: return "quad";
         case LIGHT_TRIANGLES: return "emissive triangles";
         case LIGHT_DIRECTIONAL: return "directional";
-        case LIGHT_BACKGROUND: return "background";
+        case LIGHT_ENVIRONMENT: return "environment";
     }
     throw std::logic_error("unknown light type " + std::to_string(type));
 }
@@ -436,9 +436,24 @@ void Scene::moveLight(std::uint32_t light, glm::vec3 delta) {
                 l.axis = glm::normalize(boundingCenter(l) - (lightHandle(light) + delta));
             }
             break;
-        case LIGHT_BACKGROUND:
-            break;  // everywhere: nothing to move (and never in `lights`: finalize refuses it)
+        case LIGHT_ENVIRONMENT:
+            break;  // everywhere: nothing to move (it turns by its rotation)
     }
+}
+
+void Scene::setEnvironment(EnvironmentLight light) {
+    EnvironmentDistribution d = buildEnvironmentDistribution(light.map);
+    environmentTexels = std::move(d.texels);
+    environmentCdf = std::move(d.cdf);
+    environmentIntegral = d.integral;
+    environment = std::move(light);
+}
+
+void Scene::setBackground(glm::vec3 radiance) {
+    EnvironmentLight light;
+    light.radiance = radiance;
+    light.lights = false;
+    setEnvironment(std::move(light));
 }
 
 float Scene::diagonal() const { return glm::length(boundsMax - boundsMin); }

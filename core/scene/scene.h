@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/scene/bvh.h"
+#include "core/scene/environment.h"
 #include "core/scene/mesh.h"
 #include "core/settings/settings.h"
 #include "shared/bindings.h"
@@ -56,7 +57,11 @@ struct Scene {
     std::vector<std::string> materialNames;
     std::vector<TriangleObject> objects;
     CameraDesc camera;
-    glm::vec3 background{0.0f};  // radiance of rays that leave the scene (finalize() makes it a light)
+    // What rays that leave the scene see (by default black, lighting nothing); set it with
+    // setEnvironment(), which builds its map's distribution into environmentTexels and environmentCdf.
+    EnvironmentLight environment;
+    glm::dvec3 environmentIntegral{0.0};  // ∫ map texel dω (setEnvironment)
+    std::uint32_t environmentLight = NONE;  // by finalize(): the environment's index in lights, if it lights
     glm::vec3 boundsMin{0.0f};  // by finalize()
     glm::vec3 boundsMax{0.0f};
     RenderSettings render;
@@ -92,6 +97,12 @@ struct Scene {
     // Parallel light travelling along `direction`, of irradiance E [W/m² per channel] on a surface
     // facing it (the sun). finalize() sizes it to the scene's bounds.
     void addDirectionalLight(glm::vec3 direction, glm::vec3 irradiance);
+    // The environment (one a scene); finalize() makes its light, and adds it to `lights` if it
+    // lights and emits anything.
+    void setEnvironment(EnvironmentLight light);
+    // A uniform environment of `radiance` that only colours what the camera sees (the scene
+    // format's `background`).
+    void setBackground(glm::vec3 radiance);
 
     // Where light `light` is for someone moving it (a directional light: a point on its side of
     // the scene, out of the bounds), and moving it by delta with what belongs to it: the surface
@@ -100,7 +111,7 @@ struct Scene {
     glm::vec3 lightHandle(std::uint32_t light) const;
     void moveLight(std::uint32_t light, glm::vec3 delta);
 
-    // Bounds, the emissive triangles' light, light pick probabilities, the background's light,
+    // Bounds, the emissive triangles' light, the environment's light, light pick probabilities,
     // caustic targets and the BVH.
     // Call after the last add*() (again after any change).
     void finalize();

@@ -95,15 +95,20 @@ void checkReferences(const Scene& scene) {
         }
     }
     // Every light is of a type the shared code knows: its switches have a case for each type and
-    // nothing for any other. The infinite one is the scene's `background`, not one of its lights.
+    // nothing for any other. The infinite one is the scene's environment, which finalize adds.
     for (std::size_t i = 0; i < scene.lights.size(); ++i) {
         std::uint32_t type = scene.lights[i].type;
         if (type >= LIGHT_TYPE_COUNT) {
             throw std::logic_error("light " + std::to_string(i) + " has unknown type " + std::to_string(type));
         }
-        if ((lightFlags(type) & LIGHT_FLAG_INFINITE) != 0u) {
-            throw std::logic_error("light " + std::to_string(i) + " is an infinite light: a scene has one, its background");
+        if ((lightFlags(type) & LIGHT_FLAG_INFINITE) != 0u && i != scene.environmentLight) {
+            throw std::logic_error("light " + std::to_string(i) + " is an infinite light: a scene has one, its environment");
         }
+    }
+    const EnvironmentMap& map = scene.environment.map;
+    if (scene.environmentTexels.size() != std::size_t(map.width) * map.height ||
+        (map.height > 0 && scene.environmentCdf.size() != (map.height + 1) + std::size_t(map.height) * (map.width + 1))) {
+        throw std::logic_error("the environment's map changed without setEnvironment()");
     }
 }
 
@@ -150,7 +155,7 @@ void computeBounds(Scene& scene) {
                 break;
             case LIGHT_TRIANGLES:    // its scene.triangles are
             case LIGHT_DIRECTIONAL:  // at infinity, and sized to the bounds below
-            case LIGHT_BACKGROUND:   // (refused above)
+            case LIGHT_ENVIRONMENT:  // likewise
                 break;
         }
     }
@@ -239,13 +244,31 @@ void assignPickProbabilities(Scene& scene) {
     }
 }
 
-void placeInfiniteLights(Scene& scene) {
+// What rays that leave the scene see: its environment, in `infiniteLights`; and if it lights the
+// scene, a copy in `lights` (the last), sized like a directional light to the bounding sphere.
+void placeEnvironment(Scene& scene) {
+    std::vector<Light>& lights = scene.lights;
+    lights.erase(std::remove_if(lights.begin(), lights.end(), [](const Light& l) { return l.type == LIGHT_ENVIRONMENT; }),
+                 lights.end());
+    scene.environmentLight = NONE;
+    const EnvironmentLight& env = scene.environment;
     glm::vec3 centre = 0.5f * (scene.boundsMin + scene.boundsMax);
-    // What rays that leave the scene see: its background, a light of its own outside `lights`
-    // (shared/lights.h, infiniteRadiance, says why).
-    Light sky = emptyLight(LIGHT_BACKGROUND, centre, glm::vec3(0.0f));
-    sky.vectorU = scene.background;  // backgroundRadiance
-    scene.infiniteLights = {sky};
+    float radius = std::max(0.5f * glm::length(scene.boundsMax - scene.boundsMin), 1e-6f);
+    Light l = emptyLight(LIGHT_ENVIRONMENT, centre, glm::vec3(0.0f));
+    l.extent = radius;  // boundingRadius
+    l.vectorU = env.radiance;  // environmentScale
+    l.emitterFirst = env.map.width;
+    l.emitterCount = env.map.height;
+    l.vectorV = glm::normalize(env.rotation[0]);  // environmentMapX
+    l.axis = glm::normalize(env.rotation[1]);     // environmentMapY
+    // Φ = πR² ∫ L dω: the flux through the disk that its photons start from.
+    glm::dvec3 integral = env.map.empty() ? glm::dvec3(4.0 * double(PI)) : scene.environmentIntegral;
+    l.power = glm::vec3(glm::dvec3(env.radiance) * integral * (double(PI) * double(radius) * double(radius)));
+    scene.infiniteLights = {l};
+    if (env.lights && !isBlack(l.power)) {
+        scene.environmentLight = std::uint32_t(lights.size());
+        lights.push_back(l);
+    }
 }
 
 void placeCausticTargets(Scene& scene) {
@@ -297,8 +320,8 @@ void Scene::finalize() {
     computeBounds(*this);
     sizeDirectionalLights(*this);
     gatherEmissiveTriangles(*this);
+    placeEnvironment(*this);
     assignPickProbabilities(*this);
-    placeInfiniteLights(*this);
     placeCausticTargets(*this);
     bvh = buildBvh(*this, bvhNodes, primitiveRefs);
 }
