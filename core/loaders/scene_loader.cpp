@@ -319,9 +319,40 @@ glm::vec3 readPower(const Node& node) {
     return power;
 }
 
+// A rotation "rotate": [degrees, axis x, axis y, axis z].
+glm::mat3 readRotation(const Node& r) {
+    std::vector<Node> v = r.elements();
+    if (v.size() != 4) {
+        r.fail("expected [degrees, axis x, axis y, axis z]");
+    }
+    glm::vec3 axis(v[1].number(), v[2].number(), v[3].number());
+    r.checkNormalizable(axis, "the axis must be non-zero");
+    return environmentRotation(v[0].number(), axis);
+}
+
+// The environment: one radiance, or a map file (.hdr, .exr) relative to the scene file; scaled
+// by "intensity", turned by "rotate"; it lights the scene unless "lights" is false.
+void readEnvironment(Scene& scene, const Node& node) {
+    node.allowKeys({"type", "radiance", "intensity", "rotate", "lights"});
+    EnvironmentLight env;
+    float intensity = node.has("intensity") ? node["intensity"].number(kNonNegative) : 1.0f;
+    env.radiance = node["radiance"].rgb(kNonNegative) * intensity;
+    if (node.has("rotate")) {
+        env.rotation = readRotation(node["rotate"]);
+    }
+    env.lights = node.has("lights") ? node["lights"].boolean() : true;
+    scene.setEnvironment(std::move(env));
+}
+
 void readLight(Scene& scene, const Node& node) {
     const std::string& type = node["type"].string();
-    if (type == "point") {
+    if (type == "environment") {
+        readEnvironment(scene, node);
+    } else if (type == "directional") {
+        node.allowKeys({"type", "direction", "irradiance"});
+        glm::vec3 direction = node["direction"].direction();
+        scene.addDirectionalLight(direction, readPower(node["irradiance"]));
+    } else if (type == "point") {
         node.allowKeys({"type", "power", "position", "emission", "direction"});
         glm::vec3 position = node["position"].vec3();
         std::string emission = node.has("emission") ? node["emission"].string() : "isotropic";
@@ -365,11 +396,12 @@ void readLight(Scene& scene, const Node& node) {
         node.checkSpan(edgeU, edgeV, "edge_u and edge_v are parallel or zero (area at most 1e-12)");
         scene.addQuadLight(corner, edgeU, edgeV, readPower(node["power"]));
     } else {
-        node["type"].fail("unknown light type " + quote(type) + " (expected point|spot|sphere|quad)");
+        node["type"].fail("unknown light type " + quote(type) + " (expected point|spot|sphere|quad|directional|environment)");
     }
 }
 
-void readLights(Scene& scene, const Node& node) {
+// Whether one of the lights was the environment.
+bool readLights(Scene& scene, const Node& node) {
     std::vector<Node> lights = node.elements();
     if (lights.empty()) {
         node.fail("the scene has no lights");
@@ -378,9 +410,17 @@ void readLights(Scene& scene, const Node& node) {
         node.fail("too many lights: " + std::to_string(lights.size()) + " (at most " + std::to_string(LIGHTS_MAX) +
                   ")");
     }
+    const Node* environment = nullptr;
     for (const Node& light : lights) {
+        if (light["type"].string() == "environment") {
+            if (environment != nullptr) {
+                light.fail("a second environment: a scene has at most one (the first is " + environment->where() + ")");
+            }
+            environment = &light;
+        }
         readLight(scene, light);
     }
+    return environment != nullptr;
 }
 
 // The render block: each key a setting of core/settings/setting_specs.h, checked there.
@@ -431,7 +471,9 @@ Scene loadSceneJson(const std::string& text, const std::string& sourceName, cons
     for (const Node& object : root["objects"].elements()) {
         readObject(scene, object, folder, read, paths);
     }
-    readLights(scene, root["lights"]);
+    if (readLights(scene, root["lights"]) && root.has("background")) {
+        root["background"].fail("the scene has an environment light too: give its radiance there, with \"lights\": false");
+    }
     // Area lights have added their surfaces by now.
     if (scene.spheres.empty() && scene.planes.empty() && scene.quads.empty() && scene.triangles.empty()) {
         root["objects"].fail("the scene has no geometry: nothing for light to fall on or the camera to see");
@@ -440,6 +482,12 @@ Scene loadSceneJson(const std::string& text, const std::string& sourceName, cons
         readRender(root["render"], scene.render);
     }
     scene.finalize();
+    for (const Light& l : scene.lights) {
+        if (!std::isfinite(l.power.x) || !std::isfinite(l.power.y) || !std::isfinite(l.power.z)) {
+            root["lights"].fail(std::string("the ") + lightTypeName(l.type) +
+                                " light's power overflows a float (too bright for the scene's size)");
+        }
+    }
     return scene;
 }
 

@@ -21,7 +21,7 @@ struct EnvironmentMap {
     bool empty() const { return height == 0; }
 };
 
-// The largest map accepted (texels along each edge); a map is at most kEnvironmentTexelsMax texels.
+// The largest map accepted, in texels along each edge.
 inline constexpr std::uint32_t kEnvironmentWidthMax = 16384;
 inline constexpr std::uint32_t kEnvironmentHeightMax = 8192;
 
