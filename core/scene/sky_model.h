@@ -44,7 +44,8 @@ EnvironmentMap makeSkyMap(const SkyDesc& desc);
 
 // The parts of the map, for tests and for lights that want them: the sky alone in the unit map
 // direction `toward` (no sun disc; the model continued to the horizon for directions below it),
-// and the radiance of the sun's disc (zero when the sun is below the horizon).
+// and the radiance of the sun's disc, that of its centre's air mass (zero once the disc's top
+// edge is below the horizon).
 glm::vec3 skyRadiance(const SkyDesc& desc, glm::vec3 toward);
 glm::vec3 sunRadiance(const SkyDesc& desc);
 
