@@ -71,10 +71,12 @@ double zenithLuminance(double t, double thetaS) {
 
 // CIE XYZ to linear sRGB (IEC 61966-2-1: Rec. 709 primaries, D65 white), colours outside the
 // gamut clipped to it (a negative channel becomes 0).
-glm::vec3 xyzToLinearSrgb(glm::dvec3 c) {
-    glm::dvec3 rgb(3.2406 * c.x - 1.5372 * c.y - 0.4986 * c.z, -0.9689 * c.x + 1.8758 * c.y + 0.0415 * c.z,
-                   0.0557 * c.x - 0.2040 * c.y + 1.0570 * c.z);
-    return glm::vec3(glm::max(rgb, glm::dvec3(0.0)));
+template <typename Vec>
+glm::vec3 xyzToLinearSrgb(Vec c) {
+    using T = typename Vec::value_type;
+    Vec rgb(T(3.2406) * c.x - T(1.5372) * c.y - T(0.4986) * c.z, T(-0.9689) * c.x + T(1.8758) * c.y + T(0.0415) * c.z,
+            T(0.0557) * c.x - T(0.2040) * c.y + T(1.0570) * c.z);
+    return glm::vec3(glm::max(rgb, Vec(T(0))));
 }
 
 // The sky of one SkyDesc, ready to evaluate per texel.
@@ -120,13 +122,14 @@ struct Sky {
     glm::vec3 radiance(const float (&g)[3], float cosGamma) const {
         cosGamma = std::clamp(cosGamma, -1.0f, 1.0f);
         float gamma = std::acos(cosGamma);
-        double luminance = double(g[0]) * perez[0].indicatrix(gamma, cosGamma);
-        double x = double(g[1]) * perez[1].indicatrix(gamma, cosGamma);
-        double y = double(g[2]) * perez[2].indicatrix(gamma, cosGamma);
-        if (!(luminance > 0.0 && y > 0.0)) {
+        float luminance = g[0] * perez[0].indicatrix(gamma, cosGamma);
+        float x = g[1] * perez[1].indicatrix(gamma, cosGamma);
+        float y = g[2] * perez[2].indicatrix(gamma, cosGamma);
+        if (!(luminance > 0.0f && y > 0.0f)) {
             return glm::vec3(0.0f);
         }
-        return xyzToLinearSrgb(glm::dvec3(x / y * luminance, luminance, (1.0 - x - y) / y * luminance));
+        float perY = luminance / y;
+        return xyzToLinearSrgb(glm::vec3(x * perY, luminance, (1.0f - x - y) * perY));
     }
 };
 
