@@ -78,6 +78,13 @@ void writeStats(const std::string& path, Backend& backend, const std::vector<Sta
                                     {"max_per_cell", g.maxPerCell},
                                     {"mean_per_occupied", g.meanPerOccupied}};
     }
+    if (backend.scene().environmentLight != NONE) {
+        // How well the bounding sphere's disks aim the environment's photons at the scene.
+        j["environment"] = {{"source", backend.scene().environment.source.empty() ? "uniform" : backend.scene().environment.source},
+                            {"photon_paths", last.environmentPaths},
+                            {"photons_hitting_the_scene", last.environmentHits},
+                            {"hit_fraction", last.environmentPaths > 0 ? double(last.environmentHits) / last.environmentPaths : 0.0}};
+    }
     writeOutputFile(path, j.dump(2) + "\n", "stats");
 }
 

@@ -113,7 +113,7 @@ PH_CONST uint COUNTER_STORED = 0u;                   // photons appended to each
 PH_CONST uint COUNTER_SPPM_RADIUS = MAP_COUNT;       // sppm: the largest radius of a pixel with photons (float bits)
 PH_CONST uint SPPM_RADIUS_BINS = 64u;                // sppm: pixels with photons by the binary exponent of their radius
 PH_CONST uint COUNTER_SPPM_HISTOGRAM = 2u * MAP_COUNT;  // each map's bins, in map order
-PH_CONST uint COUNTER_ENVIRONMENT_PATHS = COUNTER_SPPM_HISTOGRAM + MAP_COUNT * SPPM_RADIUS_BINS;  // photons the environment emitted
+PH_CONST uint COUNTER_ENVIRONMENT_PATHS = COUNTER_SPPM_HISTOGRAM + MAP_COUNT * SPPM_RADIUS_BINS;  // global-pass photons the environment emitted
 PH_CONST uint COUNTER_ENVIRONMENT_HITS = COUNTER_ENVIRONMENT_PATHS + 1u;  // ... whose first ray met the scene
 PH_CONST uint COUNTER_COUNT = COUNTER_ENVIRONMENT_HITS + 1u;
 

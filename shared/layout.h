@@ -105,8 +105,9 @@ struct PH_ALIGN16 Light {
     float pickCdf; float pickProbability; uint profile; float falloffMean;
     // pickCdf: Σ pickProbability of this and earlier lights; profile: EMIT_*;
     // falloffMean: mean of the spot falloff over its cone, normalises the intensity
-    uint emitterFirst; uint emitterCount; float pad0; float pad1;
-    // LIGHT_TRIANGLES: its emissive triangles, emissiveTriangles[emitterFirst ..]
+    uint emitterFirst; uint emitterCount; float spanY; float spanZ;
+    // LIGHT_TRIANGLES: its emissive triangles, emissiveTriangles[emitterFirst ..];
+    // LIGHT_ENVIRONMENT: (area, spanY, spanZ) the half-extents of the scene's bounding box
 };
 
 // A bounding sphere of a specular object: the caustic pass emits photons towards these.

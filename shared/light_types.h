@@ -68,13 +68,16 @@ PH_FN float boundingRadius(PH_IN(Light) light) { return light.extent; }
 // LIGHT_ENVIRONMENT (shared/environment.h): radiance from every direction, uniform or from an
 // equirectangular map of environmentWidth × environmentHeight texels (height 0: uniform), times
 // environmentScale; the map's axes in the world (its rotation's columns); boundingCenter and
-// boundingRadius, as for a directional light, place its photons; power is πR² ∫ L dω.
+// boundingRadius, as for a directional light, bound the scene; its photons start on the faces of
+// the scene's bounding box that face their direction (boundsHalfExtent).
 PH_FN vec3 environmentScale(PH_IN(Light) light) { return light.vectorU; }  // the uniform radiance, or the map's factor
 PH_FN uint environmentWidth(PH_IN(Light) light) { return light.emitterFirst; }
 PH_FN uint environmentHeight(PH_IN(Light) light) { return light.emitterCount; }
 PH_FN vec3 environmentMapX(PH_IN(Light) light) { return light.vectorV; }
 PH_FN vec3 environmentMapY(PH_IN(Light) light) { return light.axis; }  // the map's zenith in the world
 PH_FN vec3 environmentMapZ(PH_IN(Light) light) { return cross(light.vectorV, light.axis); }
+// The scene's bounding box about boundingCenter, where the environment's photons start.
+PH_FN vec3 boundsHalfExtent(PH_IN(Light) light) { return vec3(light.area, light.spanY, light.spanZ); }
 
 PH_NAMESPACE_END
 

@@ -154,6 +154,44 @@ PH_FN vec3 parallelOrigin(vec3 center, float radius, vec3 travel, vec2 q) {
     return center + localToWorld(vec3(q.x, q.y, -1.001f), travel) * radius;
 }
 
+// A photon of the environment: a direction by the map (u1, u2), then a start on the faces of the
+// scene's bounding box that face it, uniform in the plane across the direction (Dammertz and
+// Hanika's alternative to pbrt-v4's disk of the bounding sphere: every photon enters the bounds,
+// where a disk wastes its rim). A face is picked in proportion to its area seen along the
+// direction (u3, whose remainder is one coordinate on the face; u4 the other). The start density
+// is 1 / the box's projected area A, so the flux is L A / pdf(ω).
+PH_FN PhotonEmission emitEnvironmentPhoton(BUF_PARAM PH_IN(Light) light, float u1, float u2, float u3, float u4) {
+    PhotonEmission e = noEmission();
+    vec3 toward;
+    float pdf;
+    vec3 radiance = sampleEnvironment(BUF_ARG light, u1, u2, toward, pdf);
+    vec3 h = boundsHalfExtent(light);
+    // Each axis's face that the photon enters by, and its area seen along the direction.
+    vec3 seen = vec3(h.y * h.z, h.x * h.z, h.x * h.y) * abs(toward) * 4.0f;
+    float projected = seen.x + seen.y + seen.z;
+    if (!(pdf > 0.0f) || !(projected > 0.0f)) {
+        return e;
+    }
+    vec3 side = vec3(toward.x >= 0.0f ? 1.0f : -1.0f, toward.y >= 0.0f ? 1.0f : -1.0f, toward.z >= 0.0f ? 1.0f : -1.0f);
+    float pick = u3 * projected;
+    vec3 p;
+    if (pick < seen.x) {
+        float a = pick / seen.x;
+        p = vec3(side.x, 2.0f * a - 1.0f, 2.0f * u4 - 1.0f);
+    } else if (pick < seen.x + seen.y) {
+        float a = (pick - seen.x) / seen.y;
+        p = vec3(2.0f * a - 1.0f, side.y, 2.0f * u4 - 1.0f);
+    } else {
+        float a = clamp((pick - seen.x - seen.y) / seen.z, 0.0f, 1.0f);
+        p = vec3(2.0f * a - 1.0f, 2.0f * u4 - 1.0f, side.z);
+    }
+    e.direction = -toward;
+    // Started a little outside the face, back along its own ray: nothing on the face is missed.
+    e.origin = boundingCenter(light) + p * h + toward * (1.0e-3f * boundingRadius(light));
+    e.power = radiance * (projected / pdf);
+    return e;
+}
+
 // An area light's photon: a point by area ((u3, u4); u0 picks an emissive triangle), a direction
 // cosine-weighted about its normal (u1, u2).
 PH_FN PhotonEmission emitAreaPhoton(BUF_PARAM PH_IN(Light) light, float u0, float u1, float u2, float u3,
@@ -201,20 +239,9 @@ PH_FN PhotonEmission emitPhoton(BUF_PARAM PH_IN(Light) light, PH_INOUT(Rng) rng)
             e.origin = parallelOrigin(boundingCenter(light), boundingRadius(light), e.direction, sampleUniformDisk(u1, u2));
             e.power = light.power;
             break;
-        case LIGHT_ENVIRONMENT: {
-            // A direction by the map (u1, u2), then a start on the bounding sphere's disk facing
-            // it (u3, u4): density pdf(ω) / (πR²), so the flux is L πR² / pdf(ω) (pbrt-v4's SampleLe).
-            vec3 toward;
-            float pdf;
-            vec3 radiance = sampleEnvironment(BUF_ARG light, u1, u2, toward, pdf);
-            if (pdf > 0.0f) {
-                float radius = boundingRadius(light);
-                e.direction = -toward;
-                e.origin = parallelOrigin(boundingCenter(light), radius, e.direction, sampleUniformDisk(u3, u4));
-                e.power = radiance * (PI * radius * radius / pdf);
-            }
+        case LIGHT_ENVIRONMENT:
+            e = emitEnvironmentPhoton(BUF_ARG light, u1, u2, u3, u4);
             break;
-        }
         case LIGHT_SPHERE:
         case LIGHT_QUAD:
             e = emitAreaPhoton(BUF_ARG light, 0.0f, u1, u2, u3, u4);

@@ -74,8 +74,9 @@ PH_FN PhotonPath startPhotonPath(BUF_PARAM uint index) {
 PH_FN uint photonBounce(BUF_PARAM PH_INOUT(PhotonPath) path, PH_OUT(Photon) photon) {
     Hit hit;
     bool hits = traceClosest(BUF_ARG makeRay(path.origin, path.direction, FLOAT_MAX), hit);
-    if (path.depth == 0u && (path.flags & PATH_FROM_ENVIRONMENT) != 0u) {
-        // How many of the environment's photons find the scene from its bounding sphere's disks.
+    if (path.depth == 0u && (path.flags & (PATH_FROM_ENVIRONMENT | PATH_CAUSTIC_PASS)) == PATH_FROM_ENVIRONMENT) {
+        // How many of the environment's photons find the scene from where they start (the
+        // global pass's: the caustic pass aims at its targets).
         PH_RESERVE_SLOT(BUF(counters)[COUNTER_ENVIRONMENT_PATHS]);
         if (hits) {
             PH_RESERVE_SLOT(BUF(counters)[COUNTER_ENVIRONMENT_HITS]);

@@ -152,6 +152,8 @@ bool Backend::endFrame(const FrameResult& result, bool mayRepeat) {
         stats_.stored[m] = result.counters[COUNTER_STORED + m];
         stats_.capacity[m] = params_.grids[m].photonCapacity;
     }
+    stats_.environmentPaths = result.counters[COUNTER_ENVIRONMENT_PATHS];
+    stats_.environmentHits = result.counters[COUNTER_ENVIRONMENT_HITS];
     stats_.emitted[MAP_GLOBAL] = params_.globalPaths;
     stats_.emitted[MAP_CAUSTIC] = params_.causticPaths;
     bool dropped = growPhotonMaps();

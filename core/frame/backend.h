@@ -53,6 +53,8 @@ struct FrameStats {
     std::uint32_t emitted[MAP_COUNT] = {};   // paths of the global and the caustic pass
     std::uint32_t stored[MAP_COUNT] = {};    // photons that reached each map
     std::uint32_t capacity[MAP_COUNT] = {};  // room in each map; photons beyond it were dropped
+    std::uint32_t environmentPaths = 0;      // photon paths the environment emitted
+    std::uint32_t environmentHits = 0;       // ... whose first ray met the scene
 
     std::uint64_t emittedPaths() const { return sum(emitted); }
     std::uint64_t storedPhotons() const { return sum(stored); }

@@ -19,6 +19,7 @@
 
 #include "core/loaders/json_node.h"
 #include "core/loaders/model_loader.h"
+#include "core/scene/sky_model.h"
 #include "core/settings/setting_specs.h"
 #include "core/system/error.h"
 #include "core/system/input_file.h"
@@ -332,15 +333,49 @@ glm::mat3 readRotation(const Node& r) {
 
 // The environment: one radiance, or a map file (.hdr, .exr) relative to the scene file; scaled
 // by "intensity", turned by "rotate"; it lights the scene unless "lights" is false.
-void readEnvironment(Scene& scene, const Node& node) {
-    node.allowKeys({"type", "radiance", "intensity", "rotate", "lights"});
-    EnvironmentLight env;
+// What every environment has: its intensity, its rotation, whether it lights the scene.
+void readEnvironmentCommon(const Node& node, EnvironmentLight& env, glm::vec3 radiance) {
     float intensity = node.has("intensity") ? node["intensity"].number(kNonNegative) : 1.0f;
-    env.radiance = node["radiance"].rgb(kNonNegative) * intensity;
+    env.radiance = radiance * intensity;
     if (node.has("rotate")) {
         env.rotation = readRotation(node["rotate"]);
     }
     env.lights = node.has("lights") ? node["lights"].boolean() : true;
+}
+
+void readEnvironment(Scene& scene, const Node& node) {
+    node.allowKeys({"type", "radiance", "intensity", "rotate", "lights"});
+    EnvironmentLight env;
+    readEnvironmentCommon(node, env, node["radiance"].rgb(kNonNegative));
+    scene.setEnvironment(std::move(env));
+}
+
+// The daylight sky of core/scene/sky_model.h, as an environment map.
+void readSky(Scene& scene, const Node& node) {
+    node.allowKeys({"type", "sun_direction", "turbidity", "ground_albedo", "resolution", "intensity", "rotate", "lights"});
+    SkyDesc sky;
+    if (node.has("sun_direction")) {
+        sky.sunDirection = node["sun_direction"].direction();
+    }
+    if (node.has("turbidity")) {
+        sky.turbidity = node["turbidity"].number({1.7, 10.0, false, false});
+    }
+    if (node.has("ground_albedo")) {
+        sky.groundAlbedo = node["ground_albedo"].number({0.0, 1.0, false, false});
+    }
+    if (node.has("resolution")) {
+        Node r = node["resolution"];
+        std::vector<Node> v = r.elements();
+        if (v.size() != 2) {
+            r.fail("expected [width, height]");
+        }
+        sky.width = v[0].integer(1, kEnvironmentWidthMax);
+        sky.height = v[1].integer(1, kEnvironmentHeightMax);
+    }
+    EnvironmentLight env;
+    env.source = "sky";
+    env.map = makeSkyMap(sky);
+    readEnvironmentCommon(node, env, glm::vec3(1.0f));
     scene.setEnvironment(std::move(env));
 }
 
@@ -348,6 +383,8 @@ void readLight(Scene& scene, const Node& node) {
     const std::string& type = node["type"].string();
     if (type == "environment") {
         readEnvironment(scene, node);
+    } else if (type == "sky") {
+        readSky(scene, node);
     } else if (type == "directional") {
         node.allowKeys({"type", "direction", "irradiance"});
         glm::vec3 direction = node["direction"].direction();
@@ -396,7 +433,7 @@ void readLight(Scene& scene, const Node& node) {
         node.checkSpan(edgeU, edgeV, "edge_u and edge_v are parallel or zero (area at most 1e-12)");
         scene.addQuadLight(corner, edgeU, edgeV, readPower(node["power"]));
     } else {
-        node["type"].fail("unknown light type " + quote(type) + " (expected point|spot|sphere|quad|directional|environment)");
+        node["type"].fail("unknown light type " + quote(type) + " (expected point|spot|sphere|quad|directional|environment|sky)");
     }
 }
 
@@ -412,7 +449,8 @@ bool readLights(Scene& scene, const Node& node) {
     }
     const Node* environment = nullptr;
     for (const Node& light : lights) {
-        if (light["type"].string() == "environment") {
+        const std::string& type = light["type"].string();
+        if (type == "environment" || type == "sky") {
             if (environment != nullptr) {
                 light.fail("a second environment: a scene has at most one (the first is " + environment->where() + ")");
             }

@@ -256,12 +256,18 @@ void placeEnvironment(Scene& scene) {
     float radius = std::max(0.5f * glm::length(scene.boundsMax - scene.boundsMin), 1e-6f);
     Light l = emptyLight(LIGHT_ENVIRONMENT, centre, glm::vec3(0.0f));
     l.extent = radius;  // boundingRadius
+    glm::vec3 half = 0.5f * (scene.boundsMax - scene.boundsMin);  // boundsHalfExtent
+    l.area = half.x;
+    l.spanY = half.y;
+    l.spanZ = half.z;
     l.vectorU = env.radiance;  // environmentScale
     l.emitterFirst = env.map.width;
     l.emitterCount = env.map.height;
     l.vectorV = glm::normalize(env.rotation[0]);  // environmentMapX
     l.axis = glm::normalize(env.rotation[1]);     // environmentMapY
-    // Φ = πR² ∫ L dω: the flux through the disk that its photons start from.
+    // Its power for picking lights: πR² ∫ L dω, the flux through the bounding sphere's disks (an
+    // upper bound of the flux into the bounding box, where its photons start; any pick weights
+    // keep the estimate unbiased).
     glm::dvec3 integral = env.map.empty() ? glm::dvec3(4.0 * double(PI)) : scene.environmentIntegral;
     l.power = glm::vec3(glm::dvec3(env.radiance) * integral * (double(PI) * double(radius) * double(radius)));
     scene.infiniteLights = {l};
