@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "core/scene/studio_environment.h"
 #include "core/system/error.h"
 #include "core/system/input_file.h"
 
@@ -141,9 +142,9 @@ Scene loadModelScene(const std::string& path, const std::string& bytes, const Fi
         scene.camera.up = glm::vec3(0.0f, 1.0f, 0.0f);
     }
     if (extras.lights == 0 && scene.lights.empty()) {
-        // The sun over the camera's left shoulder, and a dimmer one from the camera itself: the
-        // first alone lit the far side of flat models seen at an angle (the camera saw black),
-        // the second lights every face that faces the camera.
+        // The sun over the camera's left shoulder, and the studio environment all round (as glTF
+        // viewers light a model; core/scene/studio_environment.h): the sun alone left the far
+        // side of flat models seen at an angle black, on black.
         glm::vec3 forward = glm::normalize(scene.camera.lookAt - scene.camera.position);
         glm::vec3 side = glm::cross(forward, scene.camera.up);
         if (!(glm::length(side) > 1e-6f)) {  // a glTF camera looking along its up vector
@@ -152,7 +153,12 @@ Scene loadModelScene(const std::string& path, const std::string& bytes, const Fi
         glm::vec3 right = glm::normalize(side);
         glm::vec3 up = glm::cross(right, forward);
         scene.addDirectionalLight(glm::normalize(forward + 0.6f * right - 1.2f * up), glm::vec3(3.0f));
-        scene.addDirectionalLight(forward, glm::vec3(1.0f));
+        EnvironmentLight studio;
+        studio.source = "studio";
+        studio.map = makeStudioMap();
+        studio.radiance = glm::vec3(1.0f);
+        studio.lights = true;
+        scene.setEnvironment(std::move(studio));
     }
     scene.finalize();
     return scene;
