@@ -137,7 +137,7 @@ TEST(LightEditor, EditsEveryLightType) {
     EXPECT_GT(sun.y, s.boundsMax.y);
     editor.setPosition(1, sun + glm::vec3(sun.y - 0.5f * (s.boundsMin.y + s.boundsMax.y), 0, 0));
     editor.move(2, glm::vec3(0, 0.5f, 0));
-    editor.setBackground(glm::vec3(0.1f, 0.2f, 0.3f));
+    editor.setEnvironmentRadiance(glm::vec3(0.1f, 0.2f, 0.3f));
     Scene moved = editor.scene();
     glm::vec3 axis = directionalDirection(moved.lights[1]);
     EXPECT_LT(axis.x, -0.5f);
@@ -152,6 +152,37 @@ TEST(LightEditor, EditsEveryLightType) {
     expectNear(directionalDirection(back.lights[1]), glm::vec3(0, -1, 0), 0.0f);
     expectNear(back.triangles.back().v0, glm::vec3(0, 1, 0), 0.0f);
     expectNear(environmentScale(back.infiniteLights[0]), glm::vec3(0.0f), 0.0f);
+}
+
+// A map's intensity and turn about the vertical: the light that samples it and the one that rays
+// that leave the scene see change together, on top of the scene's own rotation.
+TEST(LightEditor, TurnsAndDimsTheEnvironment) {
+    Scene s;
+    s.addSphere(glm::vec3(0.0f), 1.0f, s.addMaterial("white", makeDiffuse(glm::vec3(0.7f))));
+    EnvironmentLight env;
+    env.map.width = 4;
+    env.map.height = 2;
+    env.map.texels.assign(8, glm::vec3(1.0f));
+    env.radiance = glm::vec3(2.0f);
+    env.rotation = environmentRotation(90.0f, glm::vec3(1, 0, 0));
+    env.lights = true;
+    s.setEnvironment(env);
+    s.finalize();
+    LightEditor editor(s);
+    ASSERT_TRUE(editor.environmentIsMap());
+    EXPECT_EQ(editor.environmentRadiance(), glm::vec3(2.0f));
+    editor.setEnvironmentRadiance(glm::vec3(0.5f));
+    editor.setEnvironmentTurn(90.0f);
+    Scene turned = editor.scene();
+    ASSERT_NE(turned.environmentLight, NONE);
+    const Light& l = turned.lights[turned.environmentLight];
+    expectNear(environmentScale(l), glm::vec3(0.5f), 0.0f);
+    expectNear(environmentScale(turned.infiniteLights[0]), glm::vec3(0.5f), 0.0f);
+    // The map's x axis, turned by 90° about X first (unchanged), then 90° about +Y: −Z.
+    expectNear(environmentMapX(l), glm::vec3(0, 0, -1), 1e-6f);
+    EXPECT_LT(turned.lights[turned.environmentLight].power.x, s.lights[s.environmentLight].power.x);
+    editor.reset();
+    expectNear(environmentMapX(editor.scene().lights[0]), glm::vec3(1, 0, 0), 1e-6f);
 }
 
 TEST(LightEditor, CornellLightMovesWithTheScene) {

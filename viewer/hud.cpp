@@ -135,9 +135,23 @@ void renderSection(ViewState& state, const HudInfo& info) {
 }
 
 void lightSection(ViewState& state, LightEditor& lights) {
-    glm::vec3 background = lights.background();
-    if (ImGui::ColorEdit3("background", &background.x, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR)) {
-        lights.setBackground(glm::max(background, glm::vec3(0.0f)));
+    // The environment: its colour (uniform) or intensity (a map), and its turn; statistics restart.
+    glm::vec3 radiance = lights.environmentRadiance();
+    if (!lights.environmentIsMap()) {
+        if (ImGui::ColorEdit3("environment", &radiance.x, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR)) {
+            lights.setEnvironmentRadiance(glm::max(radiance, glm::vec3(0.0f)));
+            state.lightsChanged = true;
+        }
+    } else {
+        float intensity = radiance.x;
+        if (ImGui::SliderFloat("environment intensity", &intensity, 1e-3f, 1e3f, "%.3f", ImGuiSliderFlags_Logarithmic)) {
+            lights.setEnvironmentRadiance(glm::vec3(std::max(intensity, 0.0f)));
+            state.lightsChanged = true;
+        }
+    }
+    float turn = lights.environmentTurn();
+    if (ImGui::SliderFloat("environment rotation", &turn, -180.0f, 180.0f, "%.0f deg")) {
+        lights.setEnvironmentTurn(turn);
         state.lightsChanged = true;
     }
     if (lights.lightCount() == 0) {

@@ -6,7 +6,7 @@
 namespace photon::viewer {
 
 LightEditor::LightEditor(Scene loaded)
-    : loaded_(std::move(loaded)), offsets_(loaded_.lights.size(), glm::vec3(0.0f)), background_(loaded_.environment.radiance) {}
+    : loaded_(std::move(loaded)), offsets_(loaded_.lights.size(), glm::vec3(0.0f)), environmentRadiance_(loaded_.environment.radiance) {}
 
 std::string LightEditor::lightName(std::uint32_t light) const {
     return std::string(lightTypeName(loaded_.lights[light].type)) + " " + std::to_string(light);
@@ -20,7 +20,8 @@ void LightEditor::setPosition(std::uint32_t light, glm::vec3 position) {
 
 void LightEditor::reset() {
     std::fill(offsets_.begin(), offsets_.end(), glm::vec3(0.0f));
-    background_ = loaded_.environment.radiance;
+    environmentRadiance_ = loaded_.environment.radiance;
+    environmentTurn_ = 0.0f;
 }
 
 Scene LightEditor::scene() const {
@@ -28,7 +29,8 @@ Scene LightEditor::scene() const {
     for (std::uint32_t l = 0; l < s.lights.size(); ++l) {
         s.moveLight(l, offsets_[l]);
     }
-    s.environment.radiance = background_;
+    s.environment.radiance = environmentRadiance_;
+    s.environment.rotation = environmentRotation(environmentTurn_, glm::vec3(0.0f, 1.0f, 0.0f)) * loaded_.environment.rotation;
     s.finalize();
     return s;
 }

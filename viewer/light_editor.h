@@ -1,6 +1,7 @@
 // Moving lights: the scene as loaded, plus an offset per light, applied by Scene::moveLight (which
 // moves what belongs to a light with it: an area light's visible surface, the emissive
-// triangles; a directional light turns instead), and the background's radiance. Offsets are
+// triangles; a directional light turns instead), and the environment's radiance (a colour for a
+// uniform one, an intensity for a map) and its turn about the vertical. Offsets are
 // applied to the loaded scene, never accumulated into a moved copy, so nothing drifts.
 #pragma once
 
@@ -27,9 +28,14 @@ public:
     glm::vec3 position(std::uint32_t light) const;
     void setPosition(std::uint32_t light, glm::vec3 position);
     void move(std::uint32_t light, glm::vec3 delta) { setPosition(light, position(light) + delta); }
-    // The radiance of rays that leave the scene (its infinite light, LIGHT_ENVIRONMENT).
-    glm::vec3 background() const { return background_; }
-    void setBackground(glm::vec3 radiance) { background_ = radiance; }
+    // The environment (what rays that leave the scene see, LIGHT_ENVIRONMENT): a map, or uniform.
+    bool environmentIsMap() const { return !loaded_.environment.map.empty(); }
+    // A uniform environment's radiance, or the factor on a map's texels.
+    glm::vec3 environmentRadiance() const { return environmentRadiance_; }
+    void setEnvironmentRadiance(glm::vec3 radiance) { environmentRadiance_ = radiance; }
+    // Degrees the environment is turned about +Y, on top of the scene's own rotation.
+    float environmentTurn() const { return environmentTurn_; }
+    void setEnvironmentTurn(float degrees) { environmentTurn_ = degrees; }
     void reset();
 
     // The loaded scene with every light moved, finalized again (bounds and light sampling).
@@ -39,7 +45,8 @@ public:
 private:
     Scene loaded_;
     std::vector<glm::vec3> offsets_;
-    glm::vec3 background_{0.0f};
+    glm::vec3 environmentRadiance_{0.0f};
+    float environmentTurn_ = 0.0f;
 };
 
 }  // namespace photon::viewer
