@@ -121,6 +121,7 @@ int run(int argc, char** argv) {
     }
 
     Scene scene = app.count("scene") == 0 ? defaultScene() : loadSceneFile(scenePath, options.paths);
+    applyEnvironmentOption(app, options, scene);
     RenderSettings settings = scene.render;
     applyRenderOptions(app, options, settings);
     // No length given anywhere: as long as a clean image takes on a small machine's CPU.

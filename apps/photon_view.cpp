@@ -75,6 +75,7 @@ int run(int argc, char** argv) {
     }
     o.paths = render.paths;
     o.scene = app.count("scene") == 0 ? defaultScene() : loadSceneFile(o.scenePath, o.paths);
+    applyEnvironmentOption(app, render, o.scene);
     o.settings = o.scene.render;
     applyRenderOptions(app, render, o.settings);
     chooseDefaults(o.settings, true);  // the viewer accumulates while the view stays

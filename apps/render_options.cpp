@@ -2,10 +2,14 @@
 
 #include <sstream>
 
+#include "core/loaders/environment_loader.h"
 #include "core/settings/setting_specs.h"
 #include "core/system/error.h"
 
 namespace photon {
+namespace {
+const Range kEnvironmentIntensity{0.0, 1e12};
+}  // namespace
 
 std::vector<std::string> splitList(const std::string& text) {
     std::vector<std::string> out;
@@ -36,6 +40,33 @@ void addRenderOptions(CLI::App& app, RenderOptions& o) {
     }
     app.add_flag("--allow-outside-paths", o.paths.allowOutside,
                  "Let model files read buffers, images, MTL files and textures outside their own folder");
+    app.add_option("--environment", o.environment,
+                   "Light the scene with this equirectangular .hdr or .exr map (replaces its environment or background)");
+    app.add_option("--environment-intensity", o.environmentIntensity,
+                   "Factor on the --environment map's texels (" + kEnvironmentIntensity.describe() + ")");
+}
+
+void applyEnvironmentOption(const CLI::App& app, const RenderOptions& o, Scene& scene) {
+    if (app.count("--environment-intensity") > 0 && app.count("--environment") == 0) {
+        throw InputError("--environment-intensity: only with --environment");
+    }
+    if (app.count("--environment") == 0) {
+        return;
+    }
+    EnvironmentLight env;
+    env.source = o.environment;
+    try {
+        env.map = loadEnvironmentMap(o.environment);
+    } catch (const InputError& e) {
+        throw InputError(std::string("--environment: ") + e.what());
+    }
+    float intensity = app.count("--environment-intensity") > 0
+                          ? parseNumber(o.environmentIntensity, kEnvironmentIntensity, "--environment-intensity")
+                          : 1.0f;
+    env.radiance = glm::vec3(intensity);
+    env.lights = true;
+    scene.setEnvironment(std::move(env));
+    scene.finalize();
 }
 
 void applyRenderOptions(const CLI::App& app, const RenderOptions& o, RenderSettings& settings) {

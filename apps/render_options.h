@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "core/loaders/model_loader.h"
+#include "core/scene/scene.h"
 #include "core/settings/settings.h"
 
 namespace photon {
@@ -20,6 +21,9 @@ struct RenderOptions {
     // --allow-outside-paths: not a render setting (a scene file cannot give it to itself), but how
     // model files are read.
     PathPolicy paths;
+    // --environment FILE and --environment-intensity X: an environment map that lights any scene.
+    std::string environment;
+    std::string environmentIntensity;
 };
 
 // The items of a comma-separated option ("cuda,vulkan"), empty ones dropped.
@@ -27,6 +31,11 @@ std::vector<std::string> splitList(const std::string& text);
 
 // The settings' options, and --allow-outside-paths.
 void addRenderOptions(CLI::App& app, RenderOptions& options);
+
+// Replaces the scene's environment (or background) with --environment's map, lighting it, and
+// finalizes the scene again; nothing if the option was not given. Throws InputError naming the
+// option and the file.
+void applyEnvironmentOption(const CLI::App& app, const RenderOptions& options, Scene& scene);
 
 // Applies the options that were given; throws InputError "--flag: reason" for a bad value.
 void applyRenderOptions(const CLI::App& app, const RenderOptions& options, RenderSettings& settings);

@@ -25,6 +25,11 @@ nlohmann::json sceneStatsJson(const Scene& scene) {
                 {"depth", scene.bvh.depth},
                 {"sah_cost", scene.bvh.sahCost},
                 {"build_seconds", scene.bvh.buildSeconds}};
+    j["environment"] = {{"source", scene.environment.source.empty() ? "uniform" : scene.environment.source},
+                        {"width", scene.environment.map.width},
+                        {"height", scene.environment.map.height},
+                        {"lights", scene.environmentLight != NONE},
+                        {"distribution_build_seconds", scene.environmentBuildSeconds}};
     std::uint64_t total = 0;
     nlohmann::json buffers = nlohmann::json::object();
     for (const BufferInfo& info : kBuffers) {

@@ -60,6 +60,17 @@ TEST_F(CudaVsCpu, EveryEstimatorAndGridInTheParityBuild) {
     }
 }
 
+// The environment (the sky's map, and the studio environment of a model file without lights):
+// photons from the bounding box's faces and shadow rays by MIS, bit for bit in the parity build.
+TEST_F(CudaVsCpu, EnvironmentScenesInTheParityBuild) {
+    for (const char* file : {"sky.json", "bunny.obj"}) {
+        SCOPED_TRACE(file);
+        Scene scene = loadSceneFile(test::scenesDir() + "/" + file);
+        compare(scene, small(), std::string("cuda-parity-") + file, true);
+        compare(scene, small(), std::string("cuda-fast-") + file, false);
+    }
+}
+
 // With deterministic photon maps the parity build equals the CPU in order too, so that even
 // subsampled gathers (the default gather budget) agree bit for bit.
 TEST_F(CudaVsCpu, DeterministicMapsEqualTheCpuInOrder) {

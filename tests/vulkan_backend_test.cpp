@@ -271,6 +271,22 @@ TEST_F(VulkanBackendTest, MeshScenesMatchCpu) {
     }
 }
 
+// The environment: the sky scene (a map: its cdf searches and photons from the bounding box's
+// faces), and the studio environment of a model file with no lights (bunny.obj on its own): on
+// lavapipe the photon maps and hit points equal the CPU's bit for bit.
+TEST_F(VulkanBackendTest, EnvironmentScenesMatchCpu) {
+    for (const char* file : {"sky.json", "bunny.obj"}) {
+        Scene scene = loadSceneFile(test::scenesDir() + "/" + file);
+        RenderSettings settings = smallSettings();
+        settings.photons = 20000;
+        render(scene, settings);
+        expectSameStages(file, true, true);
+        EXPECT_LE(compareImages(cpu_->readFrame(), vulkan_->readFrame(), file), imageTolerance());
+        EXPECT_GT(vulkan_->lastFrameStats().environmentHits, 0u) << file;
+        EXPECT_EQ(vulkan_->lastFrameStats().environmentHits, cpu_->lastFrameStats().environmentHits) << file;
+    }
+}
+
 // A map that overflows its capacity in the first frame is grown and the frame runs again, so the
 // maps hold every photon: they match the CPU's.
 TEST_F(VulkanBackendTest, OverflowingMapGrowsWithoutLosingPhotons) {

@@ -1,6 +1,7 @@
 #include "core/scene/scene.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
@@ -442,7 +443,9 @@ void Scene::moveLight(std::uint32_t light, glm::vec3 delta) {
 }
 
 void Scene::setEnvironment(EnvironmentLight light) {
+    auto start = std::chrono::steady_clock::now();
     EnvironmentDistribution d = buildEnvironmentDistribution(light.map);
+    environmentBuildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     environmentTexels = std::move(d.texels);
     environmentCdf = std::move(d.cdf);
     environmentIntegral = d.integral;

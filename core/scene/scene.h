@@ -61,6 +61,7 @@ struct Scene {
     // setEnvironment(), which builds its map's distribution into environmentTexels and environmentCdf.
     EnvironmentLight environment;
     glm::dvec3 environmentIntegral{0.0};  // ∫ map texel dω (setEnvironment)
+    double environmentBuildSeconds = 0.0;  // setEnvironment's time for the map's texels and cdfs
     std::uint32_t environmentLight = NONE;  // by finalize(): the environment's index in lights, if it lights
     glm::vec3 boundsMin{0.0f};  // by finalize()
     glm::vec3 boundsMax{0.0f};
