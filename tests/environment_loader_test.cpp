@@ -19,16 +19,19 @@
 #include <string>
 #include <vector>
 
-#include <stb_image_write.h>
-#include <tinyexr.h>
-
 #include "core/image/image.h"
 #include "core/system/error.h"
+#include "tools/environment_files.h"
 
 namespace photon {
 namespace {
 
 namespace fs = std::filesystem;
+using tools::ExrCompression;
+using tools::ExrType;
+using tools::exrAttribute;
+using tools::exrBytes;
+using tools::exrChunk;
 
 // A texel that tells its place: every channel differs, by column and row, within a factor of 2 of
 // the others (RGBE keeps 8 bits a channel under one exponent, so far smaller channels lose bits).
@@ -65,8 +68,7 @@ protected:
     }
 
     std::string hdr(const std::string& name, int width, int height, const std::vector<glm::vec3>& texels) const {
-        EXPECT_TRUE(stbi_write_hdr(path(name).c_str(), width, height, 3, &texels[0].x));
-        return path(name);
+        return write(name, tools::hdrBytes(width, height, texels));
     }
 
     // The message of the InputError that loading `file` raises; "(loaded)" if none.
@@ -87,67 +89,6 @@ protected:
         EXPECT_EQ(message.find('\n'), std::string::npos) << message;
     }
 };
-
-// An OpenEXR image of `channels` (some of "RGBA", written in the specification's sorted order)
-// taken from `texels` (row by row from the top; alpha 0.5), stored as `type` with `compression`.
-std::string exrBytes(int width, int height, const std::vector<glm::vec3>& texels, std::string channels = "RGB",
-                     int type = TINYEXR_PIXELTYPE_FLOAT, int compression = TINYEXR_COMPRESSIONTYPE_ZIP) {
-    std::sort(channels.begin(), channels.end());
-    std::vector<std::vector<float>> planes(channels.size());
-    std::vector<float*> pointers;
-    std::vector<EXRChannelInfo> info(channels.size());
-    std::vector<int> given(channels.size(), TINYEXR_PIXELTYPE_FLOAT);
-    std::vector<int> stored(channels.size(), type);
-    for (std::size_t c = 0; c < channels.size(); ++c) {
-        int k = int(std::string("RGB").find(channels[c]));
-        for (const glm::vec3& t : texels) {
-            planes[c].push_back(k < 0 ? 0.5f : t[k]);
-        }
-        pointers.push_back(planes[c].data());
-        info[c].name[0] = channels[c];
-    }
-    EXRImage image;
-    InitEXRImage(&image);
-    image.num_channels = int(channels.size());
-    image.images = reinterpret_cast<unsigned char**>(pointers.data());
-    image.width = width;
-    image.height = height;
-    EXRHeader header;
-    InitEXRHeader(&header);
-    header.compression_type = compression;
-    header.num_channels = int(channels.size());
-    header.channels = info.data();
-    header.pixel_types = given.data();
-    header.requested_pixel_types = stored.data();
-    unsigned char* memory = nullptr;
-    const char* err = nullptr;
-    std::size_t size = SaveEXRImageToMemory(&image, &header, &memory, &err);
-    EXPECT_GT(size, 0u) << (err ? err : "");
-    std::string bytes(reinterpret_cast<const char*>(memory), size);
-    std::free(memory);
-    return bytes;
-}
-
-// The place of the attribute `name`'s value in an EXR file's header.
-std::size_t exrAttribute(const std::string& bytes, const std::string& name, const std::string& type) {
-    std::size_t at = bytes.find(name + '\0' + type + '\0');
-    EXPECT_NE(at, std::string::npos) << name;
-    return at + name.size() + type.size() + 2 + 4;  // the names, then the value's size
-}
-
-// Where chunk k of an EXR file begins, from its offset table.
-std::size_t exrChunk(const std::string& bytes, std::size_t k) {
-    EXRVersion version;
-    EXRHeader header;
-    InitEXRHeader(&header);
-    const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
-    EXPECT_EQ(ParseEXRVersionFromMemory(&version, data, bytes.size()), TINYEXR_SUCCESS);
-    EXPECT_EQ(ParseEXRHeaderFromMemory(&header, &version, data, bytes.size(), nullptr), TINYEXR_SUCCESS);
-    std::uint64_t offset = 0;
-    std::memcpy(&offset, bytes.data() + 8 + header.header_len + 8 * k, 8);
-    FreeEXRHeader(&header);
-    return std::size_t(offset);
-}
 
 void putInt32(std::string& bytes, std::size_t at, std::int32_t value) { std::memcpy(&bytes[at], &value, 4); }
 
@@ -225,10 +166,10 @@ TEST_F(EnvironmentLoader, HugeHdrFailsFast) {
 TEST_F(EnvironmentLoader, ExrRoundTripsTopRowFirst) {
     std::vector<glm::vec3> texels = probeTexels(5, 40);
     for (std::string channels : {"RGB", "RGBA"}) {
-        for (int compression : {TINYEXR_COMPRESSIONTYPE_NONE, TINYEXR_COMPRESSIONTYPE_RLE, TINYEXR_COMPRESSIONTYPE_ZIPS,
-                                TINYEXR_COMPRESSIONTYPE_ZIP, TINYEXR_COMPRESSIONTYPE_PIZ}) {
-            std::string file = write(channels + std::to_string(compression) + ".exr",
-                                     exrBytes(5, 40, texels, channels, TINYEXR_PIXELTYPE_FLOAT, compression));
+        for (ExrCompression compression :
+             {ExrCompression::None, ExrCompression::Rle, ExrCompression::Zips, ExrCompression::Zip, ExrCompression::Piz}) {
+            std::string file = write(channels + std::to_string(int(compression)) + ".exr",
+                                     exrBytes(5, 40, texels, channels, ExrType::Float, compression));
             SCOPED_TRACE(file);
             expectTexels(loadEnvironmentMap(file), 5, 40, texels, 0.0f);
         }
@@ -240,7 +181,7 @@ TEST_F(EnvironmentLoader, ExrRoundTripsTopRowFirst) {
 // Half floats: 11 significant bits, within 0.1%.
 TEST_F(EnvironmentLoader, HalfExr) {
     std::vector<glm::vec3> texels = probeTexels(7, 3);
-    std::string file = write("half.exr", exrBytes(7, 3, texels, "RGBA", TINYEXR_PIXELTYPE_HALF));
+    std::string file = write("half.exr", exrBytes(7, 3, texels, "RGBA", ExrType::Half));
     expectTexels(loadEnvironmentMap(file), 7, 3, texels, 1e-3f);
 }
 
@@ -248,7 +189,7 @@ TEST_F(EnvironmentLoader, HalfExr) {
 // (tinyexr by itself would turn it upside down).
 TEST_F(EnvironmentLoader, DecreasingLineOrderKeepsTheTopOnTop) {
     std::vector<glm::vec3> texels = probeTexels(6, 20);
-    std::string bytes = exrBytes(6, 20, texels, "RGB", TINYEXR_PIXELTYPE_FLOAT, TINYEXR_COMPRESSIONTYPE_NONE);
+    std::string bytes = exrBytes(6, 20, texels, "RGB", ExrType::Float, ExrCompression::None);
     bytes[exrAttribute(bytes, "lineOrder", "lineOrder")] = 1;
     expectTexels(loadEnvironmentMap(write("decreasing.exr", bytes)), 6, 20, texels, 0.0f);
 }
@@ -258,7 +199,7 @@ TEST_F(EnvironmentLoader, BadTexelsAreRefused) {
     texels[1 * 4 + 2].y = std::numeric_limits<float>::quiet_NaN();
     expectError(write("nan.exr", exrBytes(4, 3, texels)), "texel (2, 1) is not finite");
     texels[1 * 4 + 2].y = std::numeric_limits<float>::infinity();
-    expectError(write("inf.exr", exrBytes(4, 3, texels, "RGB", TINYEXR_PIXELTYPE_HALF)), "texel (2, 1) is not finite");
+    expectError(write("inf.exr", exrBytes(4, 3, texels, "RGB", ExrType::Half)), "texel (2, 1) is not finite");
     texels[1 * 4 + 2].y = 1.0f;
     texels[2 * 4 + 3].z = -0.5f;
     texels[2 * 4 + 1].x = -1.0f;  // the first one is named
@@ -277,7 +218,7 @@ TEST_F(EnvironmentLoader, TruncatedExrIsRefused) {
 
 // A chunk that holds other lines than its place says would leave lines undecoded.
 TEST_F(EnvironmentLoader, CorruptExrChunkIsRefused) {
-    std::string bytes = exrBytes(3, 8, probeTexels(3, 8), "RGB", TINYEXR_PIXELTYPE_FLOAT, TINYEXR_COMPRESSIONTYPE_NONE);
+    std::string bytes = exrBytes(3, 8, probeTexels(3, 8), "RGB", ExrType::Float, ExrCompression::None);
     putInt32(bytes, exrChunk(bytes, 5), 4);
     expectError(write("repeated.exr", bytes), "corrupt EXR file: chunk 5 of 8 holds line 4, not 5");
 }
@@ -308,6 +249,20 @@ TEST_F(EnvironmentLoader, FilesThatAreNoMapAreRefused) {
     expectError(write("sky", "P6\n1 1\n255\nabc"), "though its name has no extension");
     expectError(write("format.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_xyze\n\n-Y 1 +X 1\nabcd"), "a Radiance header stb_image does not read");
     expectError(folder.string(), "a directory, not an environment map");
+}
+
+// The fuzz target's seeds (photon-make-environment-corpus) are maps the loader reads, so that the
+// fuzzer starts from inside every decoder; the one of lineOrder DECREASING_Y is its twin's image.
+TEST_F(EnvironmentLoader, FuzzSeedsLoad) {
+    fs::path seeds = fs::path(PHOTON_SOURCE_DIR) / "tests/fuzz/corpus/environment_loader_fuzz";
+    int count = 0;
+    for (const fs::directory_entry& seed : fs::directory_iterator(seeds)) {
+        EXPECT_NO_THROW(loadEnvironmentMap(seed.path().string())) << seed.path();
+        count += 1;
+    }
+    EXPECT_GE(count, 9);
+    EnvironmentMap decreasing = loadEnvironmentMap((seeds / "decreasing.exr").string());
+    expectTexels(decreasing, 3, 2, loadEnvironmentMap((seeds / "none.exr").string()).texels, 0.0f);
 }
 
 }  // namespace
