@@ -33,8 +33,7 @@ using tools::exrAttribute;
 using tools::exrBytes;
 using tools::exrChunk;
 
-// A texel that tells its place: every channel differs, by column and row, within a factor of 2 of
-// the others (RGBE keeps 8 bits a channel under one exponent, so far smaller channels lose bits).
+// A texel that tells its place: its channels differ from each other and from every other texel's.
 glm::vec3 probe(int x, int y) { return glm::vec3(1.0f + 0.25f * x, 1.5f + 0.125f * y, 1.25f) * float(1 + x + 7 * y); }
 
 std::vector<glm::vec3> probeTexels(int width, int height) {
@@ -109,7 +108,7 @@ void expectTexels(const EnvironmentMap& map, int width, int height, const std::v
 // ---- Radiance HDR --------------------------------------------------------------------------------
 
 // Widths 8 to 32767 are run-length encoded by stb_image_write, others flat; both keep row 0 on top.
-// RGBE keeps 8 bits under the texel's largest channel: within 1% of it.
+// RGBE keeps 8 bits a channel under the exponent of the texel's largest: within 1% of that one.
 TEST_F(EnvironmentLoader, HdrRoundTripsTopRowFirst) {
     for (int width : {1, 5, 64}) {
         int height = width == 1 ? 1 : 9;
@@ -126,6 +125,8 @@ TEST_F(EnvironmentLoader, ZeroMapIsValid) {
     expectTexels(loadEnvironmentMap(write("black.exr", exrBytes(16, 8, black))), 16, 8, black, 0.0f);
 }
 
+// Cut in half: stb_image by itself never returns from the run-length one (past the end it reads
+// zeros, and a dump of zero texels never ends the scanline).
 TEST_F(EnvironmentLoader, TruncatedHdrIsRefused) {
     for (int width : {5, 64}) {  // flat, run-length encoded
         std::string whole = read(hdr("whole.hdr", width, 32, probeTexels(width, 32)));

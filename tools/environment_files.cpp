@@ -5,8 +5,14 @@
 #include <cstring>
 #include <stdexcept>
 
-#include <stb_image_write.h>
 #include <tinyexr.h>
+
+// stb_image_write compiled in, all of it static: the tests link libdraco's archive, whose tinygltf
+// also defines stb_image_write's functions and would be linked in to provide them (and with them
+// its tinygltf, in place of libtinygltf's; see core/CMakeLists.txt).
+#define STB_IMAGE_WRITE_STATIC
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#include <stb_image_write.h>
 
 namespace photon::tools {
 
