@@ -15,6 +15,12 @@ namespace {
 
 std::string mib(std::uint64_t bytes) { return formatNumber(double(bytes) / double(1 << 20)) + " MiB"; }
 
+// "a scene file", "an environment map", "an OBJ file": the article by the first letter.
+std::string withArticle(const char* what) {
+    bool vowel = what[0] != '\0' && std::strchr("AEIOUaeiou", what[0]) != nullptr;
+    return (vowel ? "an " : "a ") + std::string(what);
+}
+
 // Closes the descriptor on every way out.
 struct Descriptor {
     int fd;
@@ -51,7 +57,7 @@ std::string readInputFile(const std::string& path, std::uint64_t limit, const ch
         throw InputError(path + ": cannot read " + what + ": " + std::strerror(errno));
     }
     if (!S_ISREG(info.st_mode)) {
-        throw InputError(path + ": " + fileKind(info.st_mode) + ", not a " + what);
+        throw InputError(path + ": " + fileKind(info.st_mode) + ", not " + withArticle(what));
     }
     if (std::uint64_t(info.st_size) > limit) {
         throw InputError(path + ": " + what + " of " + mib(std::uint64_t(info.st_size)) + ", larger than the " +
