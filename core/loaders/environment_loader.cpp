@@ -347,7 +347,10 @@ void checkTexels(const EnvironmentMap& map, const std::string& path) {
 }  // namespace
 
 EnvironmentMap loadEnvironmentMap(const std::string& path) {
-    std::string bytes = readInputFile(path, kEnvironmentFileLimit, "environment map");
+    return decodeEnvironmentMap(readInputFile(path, kEnvironmentFileLimit, "environment map"), path);
+}
+
+EnvironmentMap decodeEnvironmentMap(const std::string& bytes, const std::string& path) {
     EnvironmentMap map;
     if (bytes.empty()) {
         throw InputError(path + ": empty file, not an environment map");

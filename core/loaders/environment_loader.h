@@ -24,4 +24,7 @@ inline constexpr std::uint64_t kEnvironmentFileLimit = std::uint64_t(3) << 30;
 // texel that is not finite or is negative (radiance is neither).
 EnvironmentMap loadEnvironmentMap(const std::string& path);
 
+// The same from the file's bytes (read by the caller: a scene's FileReader), `path` naming it.
+EnvironmentMap decodeEnvironmentMap(const std::string& bytes, const std::string& path);
+
 }  // namespace photon

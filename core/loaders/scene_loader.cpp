@@ -17,6 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/loaders/environment_loader.h"
 #include "core/loaders/json_node.h"
 #include "core/loaders/model_loader.h"
 #include "core/scene/sky_model.h"
@@ -343,10 +344,29 @@ void readEnvironmentCommon(const Node& node, EnvironmentLight& env, glm::vec3 ra
     env.lights = node.has("lights") ? node["lights"].boolean() : true;
 }
 
-void readEnvironment(Scene& scene, const Node& node) {
-    node.allowKeys({"type", "radiance", "intensity", "rotate", "lights"});
+void readEnvironment(Scene& scene, const Node& node, const std::string& folder, const FileReader& read) {
+    node.allowKeys({"type", "file", "radiance", "intensity", "rotate", "lights"});
+    if (node.has("file") == node.has("radiance")) {
+        node.fail("expected one of \"file\" (an .hdr or .exr map) and \"radiance\"");
+    }
     EnvironmentLight env;
-    readEnvironmentCommon(node, env, node["radiance"].rgb(kNonNegative));
+    if (node.has("radiance")) {
+        readEnvironmentCommon(node, env, node["radiance"].rgb(kNonNegative));
+    } else {
+        Node file = node["file"];
+        const std::string& name = file.string();
+        if (name.empty()) {
+            file.fail("must not be empty");
+        }
+        std::string path = name[0] == '/' ? name : folder + name;
+        try {
+            env.map = decodeEnvironmentMap(read(path, "environment map"), path);
+        } catch (const InputError& e) {
+            file.fail(e.what());
+        }
+        env.source = name;
+        readEnvironmentCommon(node, env, glm::vec3(1.0f));
+    }
     scene.setEnvironment(std::move(env));
 }
 
@@ -379,10 +399,10 @@ void readSky(Scene& scene, const Node& node) {
     scene.setEnvironment(std::move(env));
 }
 
-void readLight(Scene& scene, const Node& node) {
+void readLight(Scene& scene, const Node& node, const std::string& folder, const FileReader& read) {
     const std::string& type = node["type"].string();
     if (type == "environment") {
-        readEnvironment(scene, node);
+        readEnvironment(scene, node, folder, read);
     } else if (type == "sky") {
         readSky(scene, node);
     } else if (type == "directional") {
@@ -438,7 +458,7 @@ void readLight(Scene& scene, const Node& node) {
 }
 
 // Whether one of the lights was the environment.
-bool readLights(Scene& scene, const Node& node) {
+bool readLights(Scene& scene, const Node& node, const std::string& folder, const FileReader& read) {
     std::vector<Node> lights = node.elements();
     if (lights.empty()) {
         node.fail("the scene has no lights");
@@ -456,7 +476,7 @@ bool readLights(Scene& scene, const Node& node) {
             }
             environment = &light;
         }
-        readLight(scene, light);
+        readLight(scene, light, folder, read);
     }
     return environment != nullptr;
 }
@@ -509,7 +529,7 @@ Scene loadSceneJson(const std::string& text, const std::string& sourceName, cons
     for (const Node& object : root["objects"].elements()) {
         readObject(scene, object, folder, read, paths);
     }
-    if (readLights(scene, root["lights"]) && root.has("background")) {
+    if (readLights(scene, root["lights"], folder, read) && root.has("background")) {
         root["background"].fail("the scene has an environment light too: give its radiance there, with \"lights\": false");
     }
     // Area lights have added their surfaces by now.
