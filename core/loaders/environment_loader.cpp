@@ -265,7 +265,8 @@ EnvironmentMap decodeExr(const std::string& b, const std::string& path) {
     std::int64_t width = std::int64_t(window.max_x) - window.min_x + 1;
     std::int64_t height = std::int64_t(window.max_y) - window.min_y + 1;
     checkSize(path, width, height);
-    // (tinyexr refuses tiles without the version's flag, and other compressions, as it parses.)
+    // Neither happens after tinyexr's parse (it reads tiles only under the version's flag and
+    // refuses other compressions), but the chunk checks below rely on both.
     if (header.tiled || linesPerChunk(header.compression_type) == 0) {
         throw InputError(path + ": an EXR file tinyexr does not decode (tiled, or compression " +
                          std::to_string(header.compression_type) + ")");
@@ -289,7 +290,8 @@ EnvironmentMap decodeExr(const std::string& b, const std::string& path) {
         }
     }
     for (int k = 0; k < 3; ++k) {
-        if (rgb[k] < 0 || header.pixel_types[rgb[k]] == TINYEXR_PIXELTYPE_UINT) {
+        int type = rgb[k] < 0 ? -1 : header.pixel_types[rgb[k]];
+        if (type != TINYEXR_PIXELTYPE_HALF && type != TINYEXR_PIXELTYPE_FLOAT) {
             throw InputError(path + ": the EXR file has no " + (k == 0 ? "R" : k == 1 ? "G" : "B") +
                              " channel of half or 32-bit floats; environment maps are RGB or RGBA images");
         }
@@ -300,8 +302,9 @@ EnvironmentMap decodeExr(const std::string& b, const std::string& path) {
     }
     checkExrChunks(b, header, height, path);
 
-    // On a failure tinyexr frees the channels it allocated, but only as many as the image says it
-    // has (0 until it succeeds): hence num_channels now, and nothing left to free after a failure.
+    // When decoding fails, tinyexr frees the image's buffers itself, channel by channel up to the
+    // image's num_channels, which it sets only on success: so the count is set here, and after a
+    // failure the struct is forgotten rather than freed twice.
     ExrImage image;
     image.num_channels = header.num_channels;
     if (LoadEXRImageFromMemory(&image, &header, data, b.size(), &err) != TINYEXR_SUCCESS) {
