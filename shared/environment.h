@@ -24,6 +24,8 @@
 
 PH_NAMESPACE_BEGIN
 
+PH_CONST float TWO_PI_SQUARED = 19.7392088021787172f;  // 2π²: dω = 2π² sin θ du dv
+
 // Radiance's RGBE texel (r | g << 8 | b << 16 | e << 24): (m + 0.5) · 2^(e − 136), e = 0 is black.
 // The power of two is built from its bits, so every backend decodes the same value.
 PH_FN vec3 decodeRgbe(uint texel) {
@@ -49,10 +51,12 @@ PH_FN vec3 equirectDirection(float u, float v) {
     return vec3(sinTheta * sinPhi, cosTheta, -sinTheta * cosPhi);
 }
 
-// The map coordinates of a unit map direction.
+// The map coordinates of a unit map direction (polynomial arctangents, math.h: the texel a
+// direction looks up is the same on every backend).
 PH_FN vec2 equirectCoordinates(vec3 d) {
-    float u = 0.5f + atan(d.x, -d.z) * INV_TWO_PI;
-    float v = acos(clamp(d.y, -1.0f, 1.0f)) * INV_PI;
+    float u = 0.5f + atan2Poly(d.x, -d.z) * INV_TWO_PI;
+    float sinTheta = sqrt(max(0.0f, d.x * d.x + d.z * d.z));
+    float v = clamp(atan2Poly(sinTheta, d.y) * INV_PI, 0.0f, 1.0f);
     return vec2(u - floor(u), v);
 }
 
@@ -110,7 +114,8 @@ PH_FN float environmentTexelDensity(BUF_PARAM PH_IN(Light) light, uvec2 t) {
     uint row = environmentRowCdf(light, t.y);
     float pRow = BUF(environmentCdf)[t.y + 1u] - BUF(environmentCdf)[t.y];
     float pColumn = BUF(environmentCdf)[row + t.x + 1u] - BUF(environmentCdf)[row + t.x];
-    return pRow * pColumn * float(w * h);
+    PH_PRECISE float density = pRow * pColumn * float(w * h);
+    return density;
 }
 
 // A direction towards the environment (unit, world space) drawn in proportion to its luminance,
@@ -136,8 +141,11 @@ PH_FN vec3 sampleEnvironment(BUF_PARAM PH_IN(Light) light, float u1, float u2, P
     vec3 d = equirectDirection(u, v);
     toward = environmentToWorld(light, d);
     float sinTheta = sqrt(max(0.0f, 1.0f - d.y * d.y));
-    // dω = 2π² sin θ du dv
-    pdf = sinTheta > 0.0f ? (r1 - r0) * (c1 - c0) * float(w * h) / (2.0f * PI * PI * sinTheta) : 0.0f;
+    // dω = 2π² sin θ du dv. (precise: Mesa would fold and reorder the constant factors, and the
+    // photons' power would differ from the CPU's in the last bit.)
+    PH_PRECISE float density = (r1 - r0) * (c1 - c0) * float(w * h);
+    PH_PRECISE float jacobian = TWO_PI_SQUARED * sinTheta;
+    pdf = sinTheta > 0.0f ? density / jacobian : 0.0f;
     return decodeRgbe(BUF(environmentTexels)[y * w + x]) * environmentScale(light);
 }
 
@@ -153,7 +161,8 @@ PH_FN float environmentPdf(BUF_PARAM PH_IN(Light) light, vec3 toward) {
         return 0.0f;
     }
     uvec2 t = environmentTexel(light, equirectCoordinates(d));
-    return environmentTexelDensity(BUF_ARG light, t) / (2.0f * PI * PI * sinTheta);
+    PH_PRECISE float jacobian = TWO_PI_SQUARED * sinTheta;
+    return environmentTexelDensity(BUF_ARG light, t) / jacobian;
 }
 
 PH_NAMESPACE_END

@@ -188,7 +188,8 @@ PH_FN PhotonEmission emitEnvironmentPhoton(BUF_PARAM PH_IN(Light) light, float u
     e.direction = -toward;
     // Started a little outside the face, back along its own ray: nothing on the face is missed.
     e.origin = boundingCenter(light) + p * h + toward * (1.0e-3f * boundingRadius(light));
-    e.power = radiance * (projected / pdf);
+    PH_PRECISE vec3 power = radiance * (projected / pdf);
+    e.power = power;
     return e;
 }
 
@@ -381,7 +382,8 @@ PH_FN PhotonEmission emitParallelLightCausticPhoton(BUF_PARAM PH_IN(Light) light
             return noEmission();
         }
         travel = -toward;
-        irradiance = radiance / pdf;
+        PH_PRECISE vec3 e = radiance / pdf;
+        irradiance = e;
     } else {
         irradiance = directionalIrradiance(light);
     }

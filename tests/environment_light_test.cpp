@@ -259,6 +259,20 @@ TEST(EnvironmentImportance, SmallBrightRegionNeedsTenTimesFewerSamples) {
     EXPECT_GE(varUniform / varImportance, 10.0);
 }
 
+// Radiance's shared exponent keeps every channel within 1/256 of the largest, over the float range.
+TEST(EnvironmentMaps, RgbeKeepsColoursWithinItsPrecision) {
+    for (float scale : {1e-30f, 1e-6f, 0.01f, 1.0f, 1.9999f, 2.0f, 3.0e4f, 1.0e9f, 1.0e30f, 3.0e38f}) {
+        glm::vec3 c = glm::vec3(1.0f, 0.5f, 0.01f) * scale;
+        glm::vec3 d = decodeRgbe(encodeRgbe(c));
+        float largest = std::min(c.x, 1.7e38f);  // RGBE's largest value is 255.5 · 2^119
+        EXPECT_NEAR(d.x, largest, largest / 200.0f) << scale;
+        EXPECT_NEAR(d.y, std::min(c.y, largest), largest / 200.0f) << scale;
+        EXPECT_NEAR(d.z, c.z, largest / 200.0f) << scale;
+    }
+    EXPECT_EQ(encodeRgbe(glm::vec3(0.0f)), 0u);
+    EXPECT_EQ(decodeRgbe(0u), glm::vec3(0.0f));
+}
+
 // Maps that give nothing to sample: black everywhere, one texel, one texel that is black.
 TEST(EnvironmentMaps, DegenerateMapsRenderFiniteImages) {
     std::vector<EnvironmentMap> maps = {oneTexelMap(16, 8, 3, 2, 0.0f), oneTexelMap(1, 1, 0, 0, 3.0f),

@@ -164,6 +164,16 @@ protected:
         }
     }
 
+    // A shipped scene file, one frame of 20000 photons: the stages bit for bit, the frames close.
+    static void renderSceneFileAndCompare(const char* file) {
+        Scene scene = loadSceneFile(test::scenesDir() + "/" + file);
+        RenderSettings settings = smallSettings();
+        settings.photons = 20000;
+        render(scene, settings);
+        expectSameStages(file, true, true);
+        EXPECT_LE(compareImages(cpu_->readFrame(), vulkan_->readFrame(), file), imageTolerance());
+    }
+
     static Backend* vulkan_;
     static Backend* cpu_;
     static Backend* otherSeed_;  // the CPU with another seed: the noise to allow off lavapipe
@@ -262,12 +272,7 @@ TEST_F(VulkanBackendTest, EverySceneFileRendersFinite) {
 // lavapipe the photon maps and hit points equal the CPU's bit for bit.
 TEST_F(VulkanBackendTest, MeshScenesMatchCpu) {
     for (const char* file : {"bunny.json", "textured.glb"}) {
-        Scene scene = loadSceneFile(test::scenesDir() + "/" + file);
-        RenderSettings settings = smallSettings();
-        settings.photons = 20000;
-        render(scene, settings);
-        expectSameStages(file, true, true);
-        EXPECT_LE(compareImages(cpu_->readFrame(), vulkan_->readFrame(), file), imageTolerance());
+        renderSceneFileAndCompare(file);
     }
 }
 
@@ -276,12 +281,7 @@ TEST_F(VulkanBackendTest, MeshScenesMatchCpu) {
 // lavapipe the photon maps and hit points equal the CPU's bit for bit.
 TEST_F(VulkanBackendTest, EnvironmentScenesMatchCpu) {
     for (const char* file : {"sky.json", "bunny.obj"}) {
-        Scene scene = loadSceneFile(test::scenesDir() + "/" + file);
-        RenderSettings settings = smallSettings();
-        settings.photons = 20000;
-        render(scene, settings);
-        expectSameStages(file, true, true);
-        EXPECT_LE(compareImages(cpu_->readFrame(), vulkan_->readFrame(), file), imageTolerance());
+        renderSceneFileAndCompare(file);
         EXPECT_GT(vulkan_->lastFrameStats().environmentHits, 0u) << file;
         EXPECT_EQ(vulkan_->lastFrameStats().environmentHits, cpu_->lastFrameStats().environmentHits) << file;
     }

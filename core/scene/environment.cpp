@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -15,14 +16,15 @@ std::uint32_t encodeRgbe(glm::vec3 c) {
     if (!(v >= 1e-32f)) {
         return 0u;
     }
-    int e = 0;
-    float mantissa = std::frexp(v, &e);  // v = mantissa · 2^e, mantissa in [0.5, 1)
-    if (e > 127) {
-        e = 127;  // (finite inputs only reach 2^128 at the float limit)
-        mantissa = 255.0f / 256.0f;
-    }
-    float scale = mantissa * 256.0f / v;
-    auto channel = [&](float x) { return std::uint32_t(std::min(255.0f, x * scale)); };
+    // v = m · 2^e with m in [0.5, 1) (frexp's convention), read from v's bits: e is at most 128
+    // for a finite float and at least −106 above 1e-32, so 2^(8 − e) is a normal float too.
+    std::uint32_t bits;
+    std::memcpy(&bits, &v, sizeof bits);
+    int e = std::min(int((bits >> 23) & 255u) - 126, 127);  // (2^127 and above: the largest RGBE value)
+    std::uint32_t scaleBits = std::uint32_t(127 + 8 - e) << 23;
+    float scale;
+    std::memcpy(&scale, &scaleBits, sizeof scale);  // 256 / 2^e: the largest channel in [128, 256)
+    auto channel = [&](float x) { return std::min(std::uint32_t(x * scale), 255u); };
     return channel(c.x) | channel(c.y) << 8 | channel(c.z) << 16 | std::uint32_t(e + 128) << 24;
 }
 
@@ -46,15 +48,16 @@ EnvironmentDistribution buildEnvironmentDistribution(const EnvironmentMap& map) 
             double theta1 = PI * double(y + 1) / double(h);
             double sinTheta = std::sin(0.5 * (theta0 + theta1));
             double texelSolidAngle = (2.0 * double(PI) / double(w)) * (std::cos(theta0) - std::cos(theta1));
-            glm::dvec3 integral(0.0);
+            glm::dvec3 rowSum(0.0);
             prefix[0] = 0.0;
             for (std::size_t x = 0; x < w; ++x) {
                 std::uint32_t texel = encodeRgbe(map.texels[y * w + x]);
                 d.texels[y * w + x] = texel;
-                glm::dvec3 c(decodeRgbe(texel));
-                prefix[x + 1] = prefix[x] + (0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z) * sinTheta;
-                integral += c * texelSolidAngle;
+                glm::vec3 c = decodeRgbe(texel);
+                rowSum += glm::dvec3(c);
+                prefix[x + 1] = prefix[x] + double(0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z) * sinTheta;
             }
+            glm::dvec3 integral = rowSum * texelSolidAngle;
             float* row = &d.cdf[(h + 1) + y * (w + 1)];
             double total = prefix[w];
             for (std::size_t x = 0; x <= w; ++x) {

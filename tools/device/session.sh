@@ -3,7 +3,7 @@
 # the checkouts) from the project root, with the
 # binaries of `cmake --preset device && cmake --build --preset device` carried in build-device/bin
 # and .devlibs/ prepared. Writes logs and JSON under $OUT.
-#   tools/device/session.sh tests sanitize sanitize-new frames meshes converge pictures bundle-all
+#   tools/device/session.sh tests sanitize sanitize-new environment frames meshes converge pictures bundle-all
 set -uo pipefail
 source .devlibs/setup.sh >/dev/null
 bin=build-device/bin
@@ -15,7 +15,7 @@ summary=()
 for step in "$@"; do
   case $step in
     tests)
-      $bin/photon_tests --gtest_filter='CudaVsCpu*:Vulkan*' >"$out/tests.log" 2>&1
+      $bin/photon_tests --gtest_filter='CudaVsCpu*:Vulkan*:Environment*' >"$out/tests.log" 2>&1
       summary+=("tests: $(grep -E '^\[  (PASSED|FAILED) ' "$out/tests.log" | tr '\n' ' ')")
       grep -E "FAILED|Failure|Expected|actual|Which is" "$out/tests.log" | head -20 ;;
     sanitize)
@@ -68,6 +68,27 @@ for step in "$@"; do
           summary+=("viewer $v $r: $(tail -1 "$out/viewer.log")")
         done
       done ;;
+    environment)
+      # Issue 18: the sky scene against the same scene under a point light where its sun is, the
+      # share of environment photons that hit the scene, a 4096x2048 map's distribution build,
+      # the new kernels under compute-sanitizer, and the README picture.
+      sc=$out/env-scenes; mkdir -p "$sc"; cp scenes/sky.json "$sc/sky.json"
+      sed 's|{ "type": "sky"[^}]*}|{ "type": "point", "position": [-2.4, 3.0, -3.8], "power": 900 }|' scenes/sky.json >"$sc/sky_point.json"
+      sed 's|"turbidity": 3 }|"turbidity": 3, "resolution": [4096, 2048] }|' scenes/sky.json >"$sc/sky_4k.json"
+      $bin/photon-bench --scenes-dir "$sc" --scenes sky,sky_point --backends cuda,vulkan --resolutions 1920x1080 \
+        --photons 1000000 --frames 50 --json "$out/environment.json" | tee "$out/environment.log"
+      $bin/photon-render "$sc/sky_4k.json" --backend cuda --width 1920 --height 1080 --photons 1000000 --frames 20 \
+        -o "$out/sky_4k.png" --stats "$out/sky_4k.json" -q
+      summary+=("sky 4096x2048: $(python3 -c "import json;d=json.load(open('$out/sky_4k.json'));print('distribution build', d['scene_stats']['environment']['distribution_build_seconds'], 's; environment photons hitting the scene', d['environment']['hit_fraction'])")")
+      for tool in memcheck racecheck; do
+        for run in "scenes/sky.json --frames 3" "scenes/bunny.obj --frames 3 --deterministic"; do
+          compute-sanitizer --tool $tool --error-exitcode 9 $bin/photon-render $run --backend cuda --width 96 --height 72 \
+            --photons 30000 -o "$out/sanitize.png" -q >>"$out/$tool-environment.log" 2>&1
+          summary+=("$tool $run: exit $?")
+        done
+      done
+      $bin/photon-render scenes/sky.json --backend cuda --width 960 --height 720 --photons 2000000 --time 2 \
+        -o "$out/sky.png" --stats "$out/sky-stats.json" -q ;;
     render)
       for scene in cornell mirrors; do
         $bin/photon-render scenes/$scene.json --backend cuda --width 1280 --height 960 --photons 2000000 --frames 256 \
