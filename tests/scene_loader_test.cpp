@@ -10,6 +10,7 @@
 #include <string>
 
 #include "core/system/error.h"
+#include "shared/light_types.h"
 #include "test_util.h"
 
 namespace photon {
@@ -381,6 +382,56 @@ TEST(SceneLoaderErrors, LongTokensAreCut) {
     e = objectError(R"({"type": ")" + std::string(5000, 'x') + R"(", "material": "white"})");
     EXPECT_EQ(e, "x.json: /objects/0/type: unknown object type '" + std::string(40, 'x') +
                      "...' (expected sphere|plane|quad|triangle|box|mesh)");
+}
+
+}  // namespace
+}  // namespace photon
+
+namespace photon {
+namespace {
+
+// ---- Environments -------------------------------------------------------------------------------
+
+TEST(SceneLoader, EnvironmentSkyAndDirectionalLights) {
+    Scene uniform = load(sceneWith("lights", R"([{"type": "environment", "radiance": [1, 2, 3], "intensity": 2,
+                                                   "rotate": [90, 0, 1, 0]}])"));
+    ASSERT_NE(uniform.environmentLight, NONE);
+    EXPECT_EQ(environmentScale(uniform.lights[uniform.environmentLight]), glm::vec3(2, 4, 6));
+    EXPECT_NEAR(glm::length(environmentMapX(uniform.infiniteLights[0]) - glm::vec3(0, 0, -1)), 0.0f, 1e-6f);
+    Scene seen = load(sceneWith("lights", R"([{"type": "point", "position": [0, 3, 0], "power": 10},
+                                              {"type": "environment", "radiance": [1, 1, 1], "lights": false}])"));
+    EXPECT_EQ(seen.environmentLight, NONE);
+    EXPECT_EQ(seen.lights.size(), 1u);
+    Scene sky = load(sceneWith("lights", R"([{"type": "sky", "sun_direction": [0, 1, 1], "turbidity": 4,
+                                             "resolution": [64, 32]}])"));
+    EXPECT_EQ(sky.environment.map.width, 64u);
+    EXPECT_EQ(sky.environment.source, "sky");
+    EXPECT_EQ(sky.environmentTexels.size(), 64u * 32u);
+    Scene sun = load(sceneWith("lights", R"([{"type": "directional", "direction": [0, -1, 0], "irradiance": 3}])"));
+    EXPECT_EQ(sun.lights[0].type, LIGHT_DIRECTIONAL);
+}
+
+TEST(SceneLoader, EnvironmentMistakesNameTheKey) {
+    EXPECT_NE(lightError(R"({"type": "environment", "radiance": [1, 1, 1]}, {"type": "sky"})").find("/lights/1: a second environment"),
+              std::string::npos);
+    EXPECT_NE(errorOf(sceneWith("lights", R"([{"type": "environment", "radiance": [1, 1, 1]}])").insert(1, R"("background": [1, 1, 1], )"))
+                  .find("/background: the scene has an environment light too"),
+              std::string::npos);
+    EXPECT_NE(lightError(R"({"type": "environment"})").find("/lights/0: expected one of \"file\""), std::string::npos);
+    EXPECT_NE(lightError(R"({"type": "environment", "radiance": [1, 1, 1], "file": "a.hdr"})").find("expected one of"),
+              std::string::npos);
+    EXPECT_NE(lightError(R"({"type": "environment", "file": "missing.hdr"})").find("/lights/0/file: missing.hdr"), std::string::npos);
+    EXPECT_NE(lightError(R"({"type": "environment", "radiance": [-1, 1, 1]})").find("/lights/0/radiance"), std::string::npos);
+    EXPECT_NE(lightError(R"({"type": "environment", "radiance": [1, 1, 1], "intensity": -1})").find("/lights/0/intensity"),
+              std::string::npos);
+    EXPECT_NE(lightError(R"({"type": "environment", "radiance": [1, 1, 1], "rotate": [90, 0, 0, 0]})").find("/lights/0/rotate"),
+              std::string::npos);
+    EXPECT_NE(lightError(R"({"type": "environment", "radiance": [0, 0, 0]})").find("nothing emits light"), std::string::npos);
+    EXPECT_NE(lightError(R"({"type": "sky", "turbidity": 20})").find("/lights/0/turbidity"), std::string::npos);
+    EXPECT_NE(lightError(R"({"type": "sky", "sun_direction": [0, 0, 0]})").find("/lights/0/sun_direction"), std::string::npos);
+    EXPECT_NE(lightError(R"({"type": "sky", "resolution": [65536, 4]})").find("/lights/0/resolution/0"), std::string::npos);
+    EXPECT_NE(lightError(R"({"type": "environment", "radiance": [1e38, 1e38, 1e38], "intensity": 1e30})").find("overflow"),
+              std::string::npos);
 }
 
 }  // namespace

@@ -540,6 +540,9 @@ Scene loadSceneJson(const std::string& text, const std::string& sourceName, cons
         readRender(root["render"], scene.render);
     }
     scene.finalize();
+    if (scene.lights.empty()) {
+        root["lights"].fail("nothing emits light: the only light is an environment that is black or does not light");
+    }
     for (const Light& l : scene.lights) {
         if (!std::isfinite(l.power.x) || !std::isfinite(l.power.y) || !std::isfinite(l.power.z)) {
             root["lights"].fail(std::string("the ") + lightTypeName(l.type) +
