@@ -64,10 +64,10 @@ PH_FN bool shadowRayReaches(BUF_PARAM vec3 x, vec3 ng, vec3 direction, vec3 poin
 // Reflected direct light at x from the environment, by multiple importance sampling of its map
 // and of the BSDF (Veach 1997, the power heuristic): one shadow ray each. The map finds a small
 // bright sky or sun, the BSDF a glossy highlight of a broad one. Five draws.
-PH_FN_NOINLINE vec3 environmentDirectLight(BUF_PARAM PH_IN(Light) light, vec3 x, vec3 ns, vec3 ng, vec3 wo, PH_IN(Material) m,
+PH_FN vec3 environmentDirectLight(BUF_PARAM PH_IN(Light) light, vec3 x, vec3 ns, vec3 ng, vec3 wo, PH_IN(Material) m,
                                   PH_INOUT(Rng) rng) {
     vec3 sum = vec3(0.0f);
-    LightSample ls = sampleDirectLight(BUF_ARG light, x, rng);
+    LightSample ls = sampleEnvironmentLight(BUF_ARG light, x, rng);
     float cosine = dot(ns, ls.direction);
     if (cosine > 0.0f && dot(ng, ls.direction) > 0.0f && !isBlack(ls.radiance) &&
         shadowRayReaches(BUF_ARG x, ng, ls.direction, ls.point)) {

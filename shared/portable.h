@@ -34,7 +34,6 @@
 #ifndef __cplusplus
 // ---- GLSL ------------------------------------------------------------------------------------
 #define PH_FN
-#define PH_FN_NOINLINE
 #define PH_IN(T) in T
 #define PH_INOUT(T) inout T
 #define PH_OUT(T) out T
@@ -55,15 +54,10 @@
 // ---- C++ and CUDA ----------------------------------------------------------------------------
 #include <cstdint>
 #include <glm/glm.hpp>
-// PH_FN_NOINLINE: a function of rarely taken branches that nvcc should call rather than inline,
-// so that its registers do not weigh on the stages that never take them (the environment's direct
-// light in tracePixels).
 #ifdef __CUDACC__
 #define PH_FN __host__ __device__ inline
-#define PH_FN_NOINLINE __host__ __device__ __noinline__ inline
 #else
 #define PH_FN inline
-#define PH_FN_NOINLINE inline
 #endif
 #define PH_IN(T) const T&
 #define PH_INOUT(T) T&
