@@ -35,8 +35,15 @@ EnvironmentDistribution buildEnvironmentDistribution(const EnvironmentMap& map) 
     if (h == 0) {
         return d;
     }
-    d.texels.resize(w * h);
-    d.cdf.resize((h + 1) + h * (w + 1));
+    // The two arrays' zero fill (and first page faults) side by side: for a 4096 × 2048 map, 66 MB
+    // that a single thread takes a third of the build for.
+    parallelFor(2, 1, [&](std::size_t first, std::size_t) {
+        if (first == 0) {
+            d.texels.resize(w * h);
+        } else {
+            d.cdf.resize((h + 1) + h * (w + 1));
+        }
+    });
     std::vector<double> rowWeight(h);
     std::vector<glm::dvec3> rowIntegral(h);
     // Each row: its texels encoded, its cdf over columns of luminance × sin θ (decoded values, so
