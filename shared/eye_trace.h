@@ -67,7 +67,7 @@ PH_FN bool shadowRayReaches(BUF_PARAM vec3 x, vec3 ng, vec3 direction, vec3 poin
 PH_FN vec3 environmentDirectLight(BUF_PARAM PH_IN(Light) light, vec3 x, vec3 ns, vec3 ng, vec3 wo, PH_IN(Material) m,
                                   PH_INOUT(Rng) rng) {
     vec3 sum = vec3(0.0f);
-    LightSample ls = sampleEnvironmentLight(BUF_ARG light, x, rng);
+    LightSample ls = sampleDirectLight(BUF_ARG light, x, rng);
     float cosine = dot(ns, ls.direction);
     if (cosine > 0.0f && dot(ng, ls.direction) > 0.0f && !isBlack(ls.radiance) &&
         shadowRayReaches(BUF_ARG x, ng, ls.direction, ls.point)) {

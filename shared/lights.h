@@ -478,21 +478,6 @@ PH_FN PhotonEmission emitCausticPhoton(BUF_PARAM PH_IN(Light) light, PH_INOUT(Rn
     return noEmission();
 }
 
-// Direct-light sample of the environment from x, by its map: the shadow ray runs out of the
-// bounding sphere. Two draws.
-PH_FN LightSample sampleEnvironmentLight(BUF_PARAM PH_IN(Light) light, vec3 x, PH_INOUT(Rng) rng) {
-    float u1 = rngNext(rng);
-    float u2 = rngNext(rng);
-    LightSample ls;
-    ls.radiance = vec3(0.0f);
-    vec3 radiance = sampleEnvironment(BUF_ARG light, u1, u2, ls.direction, ls.pdf);
-    ls.point = x + ls.direction * (2.0f * (length(x - boundingCenter(light)) + boundingRadius(light)));
-    if (ls.pdf > 0.0f) {
-        ls.radiance = radiance / ls.pdf;
-    }
-    return ls;
-}
-
 // Direct-light sample towards `light` from x. Two draws, three for emissive triangles.
 PH_FN LightSample sampleDirectLight(BUF_PARAM PH_IN(Light) light, vec3 x, PH_INOUT(Rng) rng) {
     float u1 = rngNext(rng);
@@ -551,8 +536,15 @@ PH_FN LightSample sampleDirectLight(BUF_PARAM PH_IN(Light) light, vec3 x, PH_INO
             }
             break;
         }
-        case LIGHT_ENVIRONMENT:
-            break;  // sampleEnvironmentLight: kept apart, so that the other lights' shadow rays do not carry its code
+        case LIGHT_ENVIRONMENT: {
+            // By the map; the shadow ray runs out of the bounding sphere.
+            vec3 radiance = sampleEnvironment(BUF_ARG light, u1, u2, ls.direction, ls.pdf);
+            ls.point = x + ls.direction * (2.0f * (length(x - boundingCenter(light)) + boundingRadius(light)));
+            if (ls.pdf > 0.0f) {
+                ls.radiance = radiance / ls.pdf;
+            }
+            break;
+        }
     }
     return ls;
 }
