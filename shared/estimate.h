@@ -17,14 +17,45 @@
 
 PH_NAMESPACE_BEGIN
 
-// The surface point being shaded.
+// The point where photons are gathered: what their reflectance needs of it. Its material is
+// looked up again only where a photon needs the full BSDF (shadingMaterial, not on Lambertian
+// surfaces), with the textured albedo, metallic and roughness of the point: the loops over photons
+// then carry a few registers instead of a 96-byte Material (which spilled on CUDA).
 struct Shading {
     vec3 position;
     vec3 normal;           // shading normal, facing wo: what the BSDF sees
     vec3 geometricNormal;  // facing wo: the side photons must come from, the plane of the disc
     vec3 wo;
-    Material material;
+    vec3 albedo;           // as the textures make it here
+    float metallic;
+    float roughness;
+    uint material;         // index into materials
+    bool lambertian;       // of storedPart(material): the BSDF is albedo/π
 };
+
+PH_FN Shading makeShading(vec3 position, vec3 normal, vec3 geometricNormal, vec3 wo, uint material,
+                          PH_IN(Material) textured) {
+    Shading s;
+    s.position = position;
+    s.normal = normal;
+    s.geometricNormal = geometricNormal;
+    s.wo = wo;
+    s.albedo = textured.albedo;
+    s.metallic = textured.metallic;
+    s.roughness = textured.roughness;
+    s.material = material;
+    s.lambertian = surfaceIs(storedPart(textured), SURFACE_LAMBERTIAN);
+    return s;
+}
+
+// The part of the point's material that photons and gather rays see (storedPart), textured.
+PH_FN Material shadingMaterial(BUF_PARAM PH_IN(Shading) s) {
+    Material m = storedPart(BUF(materials)[s.material]);
+    m.albedo = s.albedo;
+    m.metallic = s.metallic;
+    m.roughness = s.roughness;
+    return m;
+}
 
 // Kernel profiles of d²/r², unnormalised; kernelNorm makes each integrate to 1 over the disc of
 // radius r once divided by πr². Cone: Jensen's filter with k = 1.
@@ -48,21 +79,25 @@ PH_FN float kernelNorm(uint kernel) {
     return 1.0f;
 }
 
+PH_FN_OUTLINED vec3 photonBsdf(BUF_PARAM PH_IN(Shading) s, uint incoming) {
+    return evalBsdf(shadingMaterial(BUF_ARG s), s.wo, octDecode(incoming), s.normal);
+}
+
 // f(ωo, ωp) for a photon arriving from ωp, or 0 if it came from behind the surface. Lambertian
 // surfaces return 1 and get albedo/π once, outside the loop (estimateScale); they only need the
 // side, so they skip normalising ωp.
-PH_FN vec3 photonReflectance(PH_IN(Shading) s, uint incoming) {
-    if (surfaceIs(s.material, SURFACE_LAMBERTIAN)) {
+PH_FN vec3 photonReflectance(BUF_PARAM PH_IN(Shading) s, uint incoming) {
+    if (s.lambertian) {
         return dot(octDecodeUnnormalized(incoming), s.geometricNormal) > 0.0f ? vec3(1.0f) : vec3(0.0f);
     }
     if (!(dot(octDecodeUnnormalized(incoming), s.geometricNormal) > 0.0f)) {
         return vec3(0.0f);
     }
-    return evalBsdf(s.material, s.wo, octDecode(incoming), s.normal);
+    return photonBsdf(BUF_ARG s, incoming);
 }
 
 PH_FN vec3 estimateScale(PH_IN(Shading) s) {
-    return surfaceIs(s.material, SURFACE_LAMBERTIAN) ? s.material.albedo * INV_PI : vec3(1.0f);
+    return s.lambertian ? s.albedo * INV_PI : vec3(1.0f);
 }
 
 PH_CONST float DISC_THICKNESS = 0.25f;  // half-thickness of the estimation disc, in radii
@@ -147,12 +182,12 @@ PH_FN uint subsampleStart(uint begin, uint stride, float u) { return begin + min
 // Adds one photon's share to a radius query at s if it lies in the disc: its kernel-weighted
 // reflected flux to sum.xyz, and 1 to sum.w. (Adding in place, not returning zero for the many
 // photons outside: x + 0 is not free under IEEE rules.)
-PH_FN void addRadiusContribution(PH_INOUT(vec4) sum, PH_IN(Shading) s, PH_IN(Photon) p, float r2, float invR2,
+PH_FN void addRadiusContribution(BUF_PARAM PH_INOUT(vec4) sum, PH_IN(Shading) s, PH_IN(Photon) p, float r2, float invR2,
                                  float thickness, uint kernel, bool count) {
     vec3 d = p.position - s.position;
     float d2 = dot(d, d);
     if (d2 < r2 && abs(dot(d, s.geometricNormal)) <= thickness) {
-        sum += vec4(photonReflectance(s, p.incoming) * p.power * kernelProfile(kernel, d2 * invR2), count ? 1.0f : 0.0f);
+        sum += vec4(photonReflectance(BUF_ARG s, p.incoming) * p.power * kernelProfile(kernel, d2 * invR2), count ? 1.0f : 0.0f);
     }
 }
 
@@ -192,7 +227,7 @@ PH_FN vec4 radiusQuery(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float
         }
         Photon p = loadMapPhoton(BUF_ARG i);
         if (inVisitedCell(q, grid, p.position)) {
-            addRadiusContribution(cellSum, s, p, r2, invR2, thickness, kernel, count);
+            addRadiusContribution(BUF_ARG cellSum, s, p, r2, invR2, thickness, kernel, count);
         }
         i += stride;
     }
@@ -217,7 +252,7 @@ PH_FN vec3 estimateCell(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, floa
     for (uint i = subsampleStart(begin, stride, u); i < end; i += stride) {
         Photon p = loadMapPhoton(BUF_ARG i);
         if (grid.kind == GRID_BOUNDED || all(equal(cellOf(p.position, grid), cell))) {
-            sum += photonReflectance(s, p.incoming) * p.power;
+            sum += photonReflectance(BUF_ARG s, p.incoming) * p.power;
         }
     }
     return sum * float(stride) * estimateScale(s) / (grid.cellSize * grid.cellSize);
@@ -252,7 +287,7 @@ PH_FN vec3 estimateKnn(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float
             if (d2 >= maxR2 || (count == k && d2 >= heapDistance[0]) || abs(dot(d, s.geometricNormal)) > thickness) {
                 continue;
             }
-            if (isBlack(photonReflectance(s, p.incoming))) {
+            if (isBlack(photonReflectance(BUF_ARG s, p.incoming))) {
                 continue;
             }
             uint slot;
@@ -300,7 +335,7 @@ PH_FN vec3 estimateKnn(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float
         uint end;
         cellRange(BUF_ARG grid, photonCellKey(p.position, grid), begin, end);
         float weight = float(subsampleStride(end - begin, budget));
-        sum += photonReflectance(s, p.incoming) * p.power * (weight * kernelProfile(kernel, heapDistance[j] / r2));
+        sum += photonReflectance(BUF_ARG s, p.incoming) * p.power * (weight * kernelProfile(kernel, heapDistance[j] / r2));
     }
     return sum * estimateScale(s) * (kernelNorm(kernel) / (PI * r2));
 }

@@ -13,21 +13,11 @@
 
 PH_NAMESPACE_BEGIN
 
-PH_FN Shading makeShading(vec3 position, vec3 normal, vec3 geometricNormal, vec3 wo, PH_IN(Material) m) {
-    Shading s;
-    s.position = position;
-    s.normal = normal;
-    s.geometricNormal = geometricNormal;
-    s.wo = wo;
-    s.material = m;
-    return s;
-}
-
 PH_FN vec3 finalGather(BUF_PARAM PH_IN(Shading) s, uint estimator, PH_INOUT(Rng) rng) {
     uint rays = BUF(params).gatherRays;
     vec3 sum = vec3(0.0f);
     for (uint g = 0u; g < rays; ++g) {
-        BsdfSample bs = sampleBsdf(s.material, s.wo, s.geometricNormal, s.normal, rng);
+        BsdfSample bs = sampleBsdf(shadingMaterial(BUF_ARG s), s.wo, s.geometricNormal, s.normal, rng);
         if (bs.lobe == LOBE_NONE) {
             continue;
         }
@@ -48,7 +38,7 @@ PH_FN vec3 finalGather(BUF_PARAM PH_IN(Shading) s, uint estimator, PH_INOUT(Rng)
             weight *= volumeTransmittance(m, dot(wo, hit.normal), hit.t);
             if ((surface & SURFACE_STORES_PHOTONS) != 0u) {
                 float side = dot(wo, sp.geometricNormal) >= 0.0f ? 1.0f : -1.0f;
-                Shading there = makeShading(hit.position, sp.shadingNormal * side, sp.geometricNormal * side, wo, storedPart(m));
+                Shading there = makeShading(hit.position, sp.shadingNormal * side, sp.geometricNormal * side, wo, hit.material, m);
                 sum += weight * photonEstimate(BUF_ARG MAP_GLOBAL, there, estimator, rngNext(rng));
                 break;
             }
@@ -81,11 +71,12 @@ PH_FN bool viewShowsMap(uint view, uint map) {
 
 // The shading point of a hit point (a mirror coat is not part of it: see storedPart).
 PH_FN Shading hitPointShading(BUF_PARAM PH_IN(HitPoint) hp) {
-    Material m = storedPart(BUF(materials)[hp.material]);
+    Material m = BUF(materials)[hp.material];
     m.albedo = hp.albedo;
     m.metallic = hp.metallic;
     m.roughness = hp.roughness;
-    return makeShading(hp.position, octDecode(hp.normal), octDecode(hp.geometricNormal), octDecode(hp.outgoing), m);
+    return makeShading(hp.position, octDecode(hp.normal), octDecode(hp.geometricNormal), octDecode(hp.outgoing),
+                       hp.material, m);
 }
 
 // The pixel's radiance once the photon estimates (reflected radiance at the hit point) are known.

@@ -34,6 +34,7 @@
 #ifndef __cplusplus
 // ---- GLSL ------------------------------------------------------------------------------------
 #define PH_FN
+#define PH_FN_OUTLINED
 #define PH_IN(T) in T
 #define PH_INOUT(T) inout T
 #define PH_OUT(T) out T
@@ -56,8 +57,12 @@
 #include <glm/glm.hpp>
 #ifdef __CUDACC__
 #define PH_FN __host__ __device__ inline
+// A real call on CUDA: code that few threads run (a rare branch inside a hot loop) then does not
+// set the registers of the loop around it. (GLSL has no calls; the CPU inlines as it likes.)
+#define PH_FN_OUTLINED __host__ __device__ __noinline__ inline
 #else
 #define PH_FN inline
+#define PH_FN_OUTLINED inline
 #endif
 #define PH_IN(T) const T&
 #define PH_INOUT(T) T&

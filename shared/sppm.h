@@ -107,38 +107,51 @@ PH_FN vec3 sppmUpdate(BUF_PARAM uint map, PH_IN(Shading) s, vec3 weight, float f
     return frame;
 }
 
+// One map's pass of the sppm gather at a pixel's visible point: its statistics read, updated
+// with this frame's photons and written back. Each map's pass reads what it needs itself, so that
+// nothing of the other map's pass is kept in registers across its loop over photons.
+PH_FN vec3 gatherSppmMap(BUF_PARAM uint pixel, uint map, float u) {
+    HitPoint hp = BUF(hitPoints)[pixel];
+    Shading s = hitPointShading(BUF_ARG hp);
+    SppmEstimate e;
+    e.flux = vec3(0.0f);
+    e.radius = 0.0f;
+    e.count = 0.0f;
+    if (BUF(params).accumulated > 0u) {
+        e.flux = BUF(sppmPixels)[pixel].maps[map].flux;
+        e.radius = BUF(sppmPixels)[pixel].maps[map].radius;
+        e.count = BUF(sppmPixels)[pixel].count[map];
+    }
+    float footprint = pixelFootprint(BUF(params).camera, BUF(params).height, hp.position);
+    vec3 estimate = sppmUpdate(BUF_ARG map, s, hp.weight, footprint, u, e);
+    BUF(sppmPixels)[pixel].maps[map].flux = e.flux;
+    BUF(sppmPixels)[pixel].maps[map].radius = e.radius;
+    BUF(sppmPixels)[pixel].count[map] = e.count;
+    return estimate;
+}
+
 // The gather stage under sppm: updates the pixel's statistics and returns this frame's own
 // estimate (frameRadiance; STAGE_ACCUMULATE makes the image from the statistics).
 PH_FN vec3 gatherSppm(BUF_PARAM uint pixel) {
-    HitPoint hp = BUF(hitPoints)[pixel];
     uint view = BUF(params).view;
-    // (Not a ?: of a buffer element and a local: glslang gives the two struct types apart.)
-    SppmPixel state = emptySppmPixel();
-    if (BUF(params).accumulated > 0u) {
-        state = BUF(sppmPixels)[pixel];
+    uint accumulated = BUF(params).accumulated;
+    vec3 direct = BUF(hitPoints)[pixel].direct;
+    if (accumulated == 0u) {
+        BUF(sppmPixels)[pixel] = emptySppmPixel();
     }
-    state.direct += (hp.direct - state.direct) / float(BUF(params).accumulated + 1u);
-    vec3 frame = viewShowsDirect(view) ? hp.direct : vec3(0.0f);
-    if (hp.material != NONE) {
-        Shading s = hitPointShading(BUF_ARG hp);
+    vec3 mean = BUF(sppmPixels)[pixel].direct;
+    BUF(sppmPixels)[pixel].direct = mean + (direct - mean) / float(accumulated + 1u);
+    vec3 frame = viewShowsDirect(view) ? direct : vec3(0.0f);
+    if (BUF(hitPoints)[pixel].material != NONE) {
         Rng rng = rngCreate(pixel, BUF(params).frameIndex, BUF(params).seed, STREAM_GATHER);
         float u = rngNext(rng);
-        float footprint = pixelFootprint(BUF(params).camera, BUF(params).height, hp.position);
         vec3 shown = vec3(0.0f);
         for (uint m = 0u; m < MAP_COUNT; ++m) {
-            SppmEstimate e;
-            e.flux = state.maps[m].flux;
-            e.radius = state.maps[m].radius;
-            e.count = state.count[m];
-            vec3 estimate = sppmUpdate(BUF_ARG m, s, hp.weight, footprint, u, e);
-            state.maps[m].flux = e.flux;
-            state.maps[m].radius = e.radius;
-            state.count[m] = e.count;
+            vec3 estimate = gatherSppmMap(BUF_ARG pixel, m, u);
             shown += viewShowsMap(view, m) ? estimate : vec3(0.0f);
         }
         frame += shown;
     }
-    BUF(sppmPixels)[pixel] = state;
     return frame;
 }
 
