@@ -53,6 +53,18 @@ for step in "$@"; do
           -o "$out/view.png" --stats "$out/view-$view.json" -q
         summary+=("view $view: gather median $(python3 -c "import json;print(json.load(open('$out/view-$view.json'))['stages']['gather']['median_ms'])") ms")
       done ;;
+    ncu)
+      # Issue 19: what limits each stage. Nsight Compute on one launch of each kernel of a 1080p
+      # frame (after warm-up), scene SCENE (cornell built in), estimator ESTIMATOR (sppm).
+      for k in tracePhotonsKernel tracePixelsKernel gatherKernel accumulateKernel countCellsKernel scatterPhotonsKernel; do
+        ncu --kernel-name regex:"$k" --launch-skip 2 --launch-count 1 --section SpeedOfLight --section Occupancy \
+          --section LaunchStats --section WarpStateStats --section MemoryWorkloadAnalysis --section SchedulerStats \
+          --section ComputeWorkloadAnalysis $bin/photon-render ${SCENE:-} --backend cuda --width 1920 --height 1080 \
+          --photons 1000000 --frames 4 --estimator ${ESTIMATOR:-sppm} -o "$out/ncu.png" -q >"$out/ncu-$k.log" 2>&1
+        echo "== $k"
+        grep -E "^ +(Duration|Registers Per Thread|Achieved Occupancy|Theoretical Occupancy|Block Limit Registers|Compute \(SM\) Throughput|Memory Throughput|L1/TEX Hit Rate|L2 Hit Rate|DRAM Throughput|Issue Slots Busy|No Eligible|Warp Cycles Per Issued Instruction|Avg. Active Threads Per Warp|Local Memory Spilling Requests|Dynamic Shared|Stack Size|Executed Ipc Active) " "$out/ncu-$k.log" | sed -E 's/ +/ /g'
+        grep -E "Stall|stall" "$out/ncu-$k.log" | head -4 | cut -c1-300
+      done ;;
     progressive)
       $bin/photon-bench --backends cuda,vulkan --resolutions 1920x1080,3840x2160 --photons 1000000 \
         --estimator progressive --frames 64 --warmup 1 --json "$out/progressive.json" | tee "$out/progressive.log" ;;
