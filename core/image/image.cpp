@@ -10,9 +10,9 @@
 #include <stb_image_write.h>
 #include <tinyexr.h>
 
+#include "core/image/display_bytes.h"
 #include "core/system/error.h"
 #include "core/system/output_file.h"
-#include "shared/tonemap.h"
 
 namespace photon {
 namespace {
@@ -41,13 +41,7 @@ std::string encodeRgb8Png(const unsigned char* rgb, std::uint32_t width, std::ui
 
 std::string encodePng(const Image& image, float exposure, Tonemap curve) {
     std::vector<unsigned char> bytes(std::size_t(image.width) * image.height * 3);
-    float scale = std::exp2(exposure);
-    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
-        glm::vec3 c = tonemap(glm::vec3(image.pixels[i]), scale, static_cast<std::uint32_t>(curve));
-        for (int k = 0; k < 3; ++k) {
-            bytes[3 * i + k] = static_cast<unsigned char>(std::lround(c[k] * 255.0f));
-        }
-    }
+    displayBytes(image.pixels.data(), image.pixels.size(), std::exp2(exposure), curve, bytes.data());
     return encodeRgb8Png(bytes.data(), image.width, image.height);
 }
 
