@@ -10,6 +10,7 @@
 #include <tinyexr.h>
 
 #include "core/image/display_bytes.h"
+#include "core/image/exr_writer.h"
 #include "core/image/png_writer.h"
 #include "core/system/error.h"
 #include "core/system/output_file.h"
@@ -32,49 +33,6 @@ std::string encodeDisplayPng(const Image& image, float exposure, Tonemap curve) 
     return encodePng(image.width, image.height, [&](std::uint32_t y, unsigned char* rgb) {
         displayBytes(&image.pixels[std::size_t(y) * image.width], image.width, scale, curve, rgb);
     });
-}
-
-// OpenEXR, 32-bit float RGB, ZIP-compressed (as tinyexr's SaveEXR, but into memory).
-std::string encodeExr(const Image& image) {
-    std::size_t n = image.pixels.size();
-    std::vector<float> channels[3];  // B, G, R: the order EXR viewers expect
-    for (int c = 0; c < 3; ++c) {
-        channels[c].resize(n);
-        for (std::size_t i = 0; i < n; ++i) {
-            channels[c][i] = image.pixels[i][2 - c];
-        }
-    }
-    float* planes[3] = {channels[0].data(), channels[1].data(), channels[2].data()};
-    EXRImage exr;
-    InitEXRImage(&exr);
-    exr.num_channels = 3;
-    exr.images = reinterpret_cast<unsigned char**>(planes);
-    exr.width = int(image.width);
-    exr.height = int(image.height);
-    EXRHeader header;
-    InitEXRHeader(&header);
-    header.compression_type = image.width < 16 && image.height < 16 ? TINYEXR_COMPRESSIONTYPE_NONE : TINYEXR_COMPRESSIONTYPE_ZIP;
-    EXRChannelInfo info[3] = {};
-    const char* names[3] = {"B", "G", "R"};
-    int types[3] = {TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT};
-    for (int c = 0; c < 3; ++c) {
-        std::strncpy(info[c].name, names[c], sizeof(info[c].name) - 1);
-    }
-    header.num_channels = 3;
-    header.channels = info;
-    header.pixel_types = types;
-    header.requested_pixel_types = types;
-    unsigned char* memory = nullptr;
-    const char* err = nullptr;
-    std::size_t size = SaveEXRImageToMemory(&exr, &header, &memory, &err);
-    if (size == 0) {
-        std::string reason = err ? err : "unknown error";
-        FreeEXRErrorMessage(err);
-        throw RuntimeError("cannot encode the EXR image: " + reason);
-    }
-    std::string bytes(reinterpret_cast<const char*>(memory), size);
-    std::free(memory);
-    return bytes;
 }
 
 // Portable float map: "PF", size, scale (negative: little-endian), rows bottom to top.

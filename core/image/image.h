@@ -31,7 +31,7 @@ ImageFormat imageFormatFor(const std::string& path);
 std::string encodeImage(ImageFormat format, const Image& image, float exposure, Tonemap tonemap);
 
 // Writes by extension, whole or not at all (core/system/output_file.h). PNG applies exposure (stops) and
-// the tone curve; EXR and PFM are linear (core/image/png_writer.h says how). Throws
+// the tone curve; EXR and PFM are linear (core/image/png_writer.h, exr_writer.h say how). Throws
 // RuntimeError "<path>: <reason>" if the image cannot be encoded or the file cannot be written
 // (with the OS's reason).
 void writeImage(const std::string& path, const Image& image, float exposure, Tonemap tonemap);
