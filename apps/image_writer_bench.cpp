@@ -39,10 +39,12 @@ void benchImageWriters(Backend& backend, const Scene& scene,
          [&](const Image& i) { return encodeImage(ImageFormat::Png, i, exposure, curve); }},
         {"pfm", "none", [&](const Image& i) { return encodeImage(ImageFormat::Pfm, i, exposure, curve); }},
     };
-    for (ExrCompression c : {ExrCompression::Rle, ExrCompression::None, ExrCompression::Zips, ExrCompression::Zip,
-                             ExrCompression::Piz}) {
-        std::string label = std::string(toString(c)) + ", float" + (c == ExrCompression::Rle ? " (default)" : "");
-        writers.push_back({"exr", label, [c](const Image& i) { return encodeExr(i, c); }});
+    for (ExrLayout l : {ExrLayout::Scanlines, ExrLayout::Tiles}) {
+        for (ExrCompression c : {ExrCompression::Rle, ExrCompression::None, ExrCompression::Zips, ExrCompression::Zip,
+                                 ExrCompression::Piz}) {
+            std::string label = std::string(toString(c)) + ", float, " + toString(l);
+            writers.push_back({"exr", label, [c, l](const Image& i) { return encodeExr(i, c, l); }});
+        }
     }
     std::printf("image writers: %s, %u threads, median of %u writes into %s\n", backend.deviceName().c_str(),
                 workerThreads(), writes, folder.c_str());

@@ -2,7 +2,8 @@
 // chunk's CRC and the zlib stream's Adler-32 check out (zlib inflates it), the sRGB, gAMA and cHRM
 // chunks come before the pixels, and stb_image decodes the bytes of shared/tonemap.h's tonemap()
 // exactly, over several bands of rows and odd sizes. EXR: float for float through tinyexr (the
-// reader) in every compression the writer offers. The sRGB table against the formula.
+// reader) in every compression the writer offers, tiled and in scan lines, and as an environment
+// map. The sRGB table against the formula.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -24,6 +25,7 @@
 #include "core/image/display_bytes.h"
 #include "core/image/exr_writer.h"
 #include "core/image/image.h"
+#include "core/loaders/environment_loader.h"
 #include "core/system/output_file.h"
 #include "shared/tonemap.h"
 
@@ -146,8 +148,9 @@ TEST_F(ImageFiles, PngDecodesToTheToneMappedBytes) {
         float exposure;
         Tonemap curve;
     };
-    for (Case c : {Case{97, 61, 0.0f, Tonemap::Aces}, Case{1, 1, 0.0f, Tonemap::Aces}, Case{33, 32, 2.0f, Tonemap::Clamp},
-                   Case{5, 160, -1.5f, Tonemap::Reinhard}, Case{640, 1, 0.0f, Tonemap::Aces}, Case{1, 70, 0.0f, Tonemap::Clamp}}) {
+    for (Case c : {Case{97, 61, 0.0f, Tonemap::Aces}, Case{1, 1, 0.0f, Tonemap::Aces},
+                   Case{33, 32, 2.0f, Tonemap::Clamp}, Case{5, 160, -1.5f, Tonemap::Reinhard},
+                   Case{640, 1, 0.0f, Tonemap::Aces}, Case{1, 70, 0.0f, Tonemap::Clamp}}) {
         SCOPED_TRACE(std::to_string(c.width) + "x" + std::to_string(c.height));
         Image image = testImage(c.width, c.height, c.width * 1000 + c.height);
         std::string file = path("t.png");
@@ -240,7 +243,8 @@ TEST_F(ImageFiles, PngBytesRepeat) {
 
 TEST_F(ImageFiles, ExrReadsBackFloatForFloat) {
     Image image = testImage(129, 67, 9);
-    image.at(0, 0) = glm::vec4(std::numeric_limits<float>::max(), std::numeric_limits<float>::denorm_min(), -0.0f, 1.0f);
+    using limits = std::numeric_limits<float>;
+    image.at(0, 0) = glm::vec4(limits::max(), limits::denorm_min(), -0.0f, 1.0f);
     auto expectSame = [&](const Image& back) {
         ASSERT_EQ(back.width, image.width);
         ASSERT_EQ(back.height, image.height);
@@ -255,18 +259,36 @@ TEST_F(ImageFiles, ExrReadsBackFloatForFloat) {
     // Through writeImage (the default compression), then each compression the writer offers.
     writeImage(path("t.exr"), image, 0.0f, Tonemap::Aces);
     expectSame(readImage(path("t.exr")));
-    for (ExrCompression c : {ExrCompression::None, ExrCompression::Rle, ExrCompression::Zips, ExrCompression::Zip,
-                             ExrCompression::Piz}) {
-        SCOPED_TRACE(toString(c));
-        std::string file = path(std::string("t-") + toString(c) + ".exr");
-        writeOutputFile(file, encodeExr(image, c), "image");
-        expectSame(readImage(file));
+    for (ExrLayout l : {ExrLayout::Tiles, ExrLayout::Scanlines}) {
+        for (ExrCompression c : {ExrCompression::None, ExrCompression::Rle, ExrCompression::Zips, ExrCompression::Zip,
+                                 ExrCompression::Piz}) {
+            SCOPED_TRACE(std::string(toString(c)) + ", " + toString(l));
+            std::string file = path("t.exr");
+            writeOutputFile(file, encodeExr(image, c, l), "image");
+            expectSame(readImage(file));
+        }
     }
-    // One pixel, one row, one column.
-    for (auto [w, h] : {std::pair{1u, 1u}, std::pair{200u, 1u}, std::pair{1u, 40u}}) {
+    // One pixel, one row, one column, tiles cut by both edges.
+    for (auto [w, h] : {std::pair{1u, 1u}, std::pair{200u, 1u}, std::pair{1u, 40u}, std::pair{300u, 130u}}) {
         image = testImage(w, h, w + h);
         writeImage(path("small.exr"), image, 0.0f, Tonemap::Aces);
         expectSame(readImage(path("small.exr")));
+    }
+}
+
+// An EXR file Photon writes can light a scene: the environment loader, which reads scan-line files
+// only, takes it texel for texel.
+TEST_F(ImageFiles, ExrServesAsAnEnvironmentMap) {
+    Image image = testImage(64, 32, 17);
+    for (glm::vec4& p : image.pixels) {
+        p = glm::abs(p);
+    }
+    writeImage(path("env.exr"), image, 0.0f, Tonemap::Aces);
+    EnvironmentMap map = loadEnvironmentMap(path("env.exr"));
+    ASSERT_EQ(map.width, image.width);
+    ASSERT_EQ(map.height, image.height);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+        ASSERT_EQ(map.texels[i], glm::vec3(image.pixels[i])) << "texel " << i;
     }
 }
 

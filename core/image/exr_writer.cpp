@@ -9,12 +9,15 @@
 #include <OpenEXR/ImfIO.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfThreading.h>
+#include <OpenEXR/ImfTiledOutputFile.h>
 
 #include "core/system/error.h"
 #include "core/system/parallel.h"
 
 namespace photon {
 namespace {
+
+constexpr int kTileSize = 128;
 
 // OpenEXR's output stream into memory: the file goes to disk whole through writeOutputFile. OpenEXR
 // seeks back to fill in the chunk offsets once the scan lines are written.
@@ -50,6 +53,8 @@ Imf::Compression openExrCompression(ExrCompression c) {
 
 }  // namespace
 
+const char* toString(ExrLayout l) { return l == ExrLayout::Tiles ? "tiles" : "scan lines"; }
+
 const char* toString(ExrCompression c) {
     switch (c) {
         case ExrCompression::None: return "none";
@@ -61,7 +66,7 @@ const char* toString(ExrCompression c) {
     return "?";
 }
 
-std::string encodeExr(const Image& image, ExrCompression compression) {
+std::string encodeExr(const Image& image, ExrCompression compression, ExrLayout layout) {
     // OpenEXR compresses blocks of scan lines in its global thread pool, which has no threads
     // until asked for: one per hardware thread, as parallelFor has.
     static std::once_flag poolStarted;
@@ -79,7 +84,12 @@ std::string encodeExr(const Image& image, ExrCompression compression) {
             frame.insert(names[c], Imf::Slice(Imf::FLOAT, first, pixel, pixel * image.width));
         }
         MemoryStream stream(image.pixels.size() * 3 * sizeof(float) + 4096);
-        {
+        if (layout == ExrLayout::Tiles) {
+            header.setTileDescription(Imf::TileDescription(kTileSize, kTileSize, Imf::ONE_LEVEL));
+            Imf::TiledOutputFile file(stream, header);
+            file.setFrameBuffer(frame);
+            file.writeTiles(0, file.numXTiles() - 1, 0, file.numYTiles() - 1);
+        } else {
             Imf::OutputFile file(stream, header);
             file.setFrameBuffer(frame);
             file.writePixels(int(image.height));
