@@ -42,13 +42,14 @@ void benchImageWriters(Backend& backend, const Scene& scene,
     for (ExrLayout l : {ExrLayout::Scanlines, ExrLayout::Tiles}) {
         for (ExrCompression c : {ExrCompression::Rle, ExrCompression::None, ExrCompression::Zips, ExrCompression::Zip,
                                  ExrCompression::Piz}) {
-            std::string label = std::string(toString(c)) + ", float, " + toString(l);
+            bool chosen = c == ExrCompression::Rle && l == ExrLayout::Scanlines;
+            std::string label = std::string(toString(c)) + ", float, " + toString(l) + (chosen ? " (default)" : "");
             writers.push_back({"exr", label, [c, l](const Image& i) { return encodeExr(i, c, l); }});
         }
     }
     std::printf("image writers: %s, %u threads, median of %u writes into %s\n", backend.deviceName().c_str(),
                 workerThreads(), writes, folder.c_str());
-    std::printf("%-6s %-30s %-10s %10s %10s %10s\n", "format", "compression", "resolution", "MB", "encode ms",
+    std::printf("%-6s %-34s %-10s %10s %10s %10s\n", "format", "compression", "resolution", "MB", "encode ms",
                 "file ms");
     std::vector<std::string> written;
     for (auto [width, height] : resolutions) {
@@ -79,7 +80,7 @@ void benchImageWriters(Backend& backend, const Scene& scene,
                 }
             }
             written.push_back(path);
-            std::printf("%-6s %-30s %4ux%-5u %10.2f %10.1f %10.1f\n", w.extension, w.compression.c_str(), width,
+            std::printf("%-6s %-34s %4ux%-5u %10.2f %10.1f %10.1f\n", w.extension, w.compression.c_str(), width,
                         height, double(size) / 1e6, median(encodeMs), median(fileMs));
             std::fflush(stdout);
         }
