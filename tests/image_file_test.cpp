@@ -19,8 +19,14 @@
 #include <string>
 #include <vector>
 
-#include <stb_image.h>
 #include <zlib.h>
+
+// stb_image compiled in, all of it static: the tests link libdraco's archive, whose tinygltf also
+// defines stb_image's functions and would be linked in to provide them (and with them its tinygltf,
+// in place of libtinygltf's; see core/CMakeLists.txt).
+#define STB_IMAGE_STATIC
+#define STB_IMAGE_IMPLEMENTATION
+#include <stb_image.h>
 
 #include "core/image/display_bytes.h"
 #include "core/image/exr_writer.h"
