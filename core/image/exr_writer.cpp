@@ -20,7 +20,7 @@ namespace {
 constexpr int kTileSize = 128;
 
 // OpenEXR's output stream into memory: the file goes to disk whole through writeOutputFile. OpenEXR
-// seeks back to fill in the chunk offsets once the scan lines are written.
+// seeks back to fill in the chunk offsets once the chunks are written.
 class MemoryStream : public Imf::OStream {
 public:
     explicit MemoryStream(std::size_t expected) : Imf::OStream("memory") { bytes_.reserve(expected); }
