@@ -8,6 +8,8 @@
 //   photon-bench --grid-sweep 1000000,2000000,4000000,8000000,16000000   (grid build rate)
 //   photon-bench --backends cuda --scenes mesh:10000,mesh:1000000,mesh:10000000 --primary-rays
 //                (cost over triangle count: BVH build, primary rays, photon paths, frames)
+//   photon-bench --image-writers [--resolutions 1920x1080,3840x2160 --writes 11 --image-dir DIR]
+//                (each image format and EXR compression of one rendered frame: size and write time)
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -19,6 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/backends.h"
+#include "apps/image_writer_bench.h"
 #include "apps/render_options.h"
 #include "apps/scene_stats.h"
 #include "core/frame/buffers.h"
@@ -297,6 +300,9 @@ int run(int argc, char** argv) {
     bool launchSweep = false;
     bool readback = false;
     bool primaryRays = false;
+    bool imageWriters = false;
+    std::uint32_t writes = 11;
+    std::string imageDir = ".";
     BackendOptions options;
     app.add_option("--backends", backends, "Comma-separated: cpu,cuda,vulkan");
     app.add_option("--scenes", scenes, "Comma-separated scene names (files in --scenes-dir; cornell is built in)");
@@ -313,6 +319,10 @@ int run(int argc, char** argv) {
     app.add_flag("--launch-sweep", launchSweep, "CUDA: sweep block shapes of every stage");
     app.add_flag("--primary-rays", primaryRays, "CUDA: also time primary rays alone (nearest hit, no shading) per case");
     app.add_flag("--readback", readback, "CUDA: time reading the image back through pinned and pageable memory");
+    app.add_flag("--image-writers", imageWriters, "Time the image files of one frame of the first scene "
+                                                  "instead (on the first backend; default resolutions 1920x1080,3840x2160)");
+    app.add_option("--writes", writes, "--image-writers: timed writes of each file")->check(CLI::Range(1u, 1000u));
+    app.add_option("--image-dir", imageDir, "--image-writers: the folder to write them in");
     app.add_option("--device", options.device, "GPU to use");
     app.add_option("--json", jsonPath, "Write the rows as JSON");
     app.add_option("--csv", csvPath, "Write the rows as CSV");
@@ -340,6 +350,9 @@ int run(int argc, char** argv) {
     if (!gridSweep.empty()) {
         gridSweepList = photonCounts(gridSweep, "--grid-sweep");
     }
+    if (imageWriters && app.count("--resolutions") == 0) {
+        resolutions = "1920x1080,3840x2160";
+    }
     std::vector<std::pair<std::uint32_t, std::uint32_t>> resolutionList;
     for (const std::string& r : splitList(resolutions)) {
         resolutionList.push_back(parseResolution(r));
@@ -352,6 +365,16 @@ int run(int argc, char** argv) {
     }
     if (!csvPath.empty()) {
         checkOutputPath(csvPath, "CSV table");
+    }
+
+    if (imageWriters) {
+        checkOutputPath(imageDir + "/photon-bench-image.png", "image");
+        std::vector<std::string> names = splitList(backends);
+        std::unique_ptr<Backend> backend = createBackend(names.empty() ? "cpu" : names[0], options);
+        std::vector<std::string> sceneNames = splitList(scenes);
+        benchImageWriters(*backend, sceneNamed(sceneNames.empty() ? "cornell" : sceneNames[0], scenesDir),
+                          resolutionList, writes, imageDir);
+        return 0;
     }
 
     // What to measure: settings and a label, per scene.

@@ -12,15 +12,21 @@ PH_FN float srgbEncode(float c) {
     return c <= 0.0031308f ? 12.92f * c : 1.055f * pow(c, 1.0f / 2.4f) - 0.055f;
 }
 
-// `scale` is 2^exposure.
-PH_FN vec3 tonemap(vec3 radiance, float scale, uint curve) {
-    vec3 x = max(radiance * scale, vec3(0.0f));
+// Exposure and the tone curve of one channel, before the transfer function: a linear display
+// value (the clamp curve leaves it unclamped). `scale` is 2^exposure.
+PH_FN float toneCurve(float radiance, float scale, uint curve) {
+    float x = max(radiance * scale, 0.0f);
     if (curve == TONEMAP_REINHARD) {
-        x = x / (vec3(1.0f) + x);
+        x = x / (1.0f + x);
     } else if (curve == TONEMAP_ACES) {
-        x = (x * (2.51f * x + vec3(0.03f))) / (x * (2.43f * x + vec3(0.59f)) + vec3(0.14f));
+        x = (x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f);
     }
-    return vec3(srgbEncode(x.x), srgbEncode(x.y), srgbEncode(x.z));
+    return x;
+}
+
+PH_FN vec3 tonemap(vec3 radiance, float scale, uint curve) {
+    return vec3(srgbEncode(toneCurve(radiance.x, scale, curve)), srgbEncode(toneCurve(radiance.y, scale, curve)),
+                srgbEncode(toneCurve(radiance.z, scale, curve)));
 }
 
 PH_NAMESPACE_END

@@ -18,5 +18,5 @@ apt-get install -y -q --no-install-recommends \
   libvulkan-dev vulkan-tools vulkan-validationlayers glslang-tools spirv-cross \
   libglfw3-dev libimgui-dev xvfb xauth x11-apps imagemagick \
   libtinyobjloader-dev libtinygltf-dev libmeshoptimizer-dev libdraco-dev gltfpack assimp-testmodels libbenchmark-dev \
-  clang libclang-rt-14-dev zlib1g-dev python3-matplotlib
+  clang libclang-rt-14-dev zlib1g-dev libisal-dev libopenexr-dev python3-matplotlib
 apt-get install -y -q --no-install-recommends -t bookworm-backports mesa-vulkan-drivers

@@ -7,12 +7,13 @@
 #include <fstream>
 #include <sstream>
 
-#include <stb_image_write.h>
 #include <tinyexr.h>
 
+#include "core/image/display_bytes.h"
+#include "core/image/exr_writer.h"
+#include "core/image/png_writer.h"
 #include "core/system/error.h"
 #include "core/system/output_file.h"
-#include "shared/tonemap.h"
 
 namespace photon {
 namespace {
@@ -27,76 +28,17 @@ std::string lowerExtension(const std::string& path) {
     return ext;
 }
 
-void appendBytes(void* context, void* data, int size) {
-    static_cast<std::string*>(context)->append(static_cast<const char*>(data), std::size_t(size));
-}
-
-std::string encodeRgb8Png(const unsigned char* rgb, std::uint32_t width, std::uint32_t height) {
-    std::string png;
-    if (!stbi_write_png_to_func(appendBytes, &png, int(width), int(height), 3, rgb, int(width) * 3)) {
-        throw RuntimeError("cannot encode the PNG image");
-    }
-    return png;
-}
-
-std::string encodePng(const Image& image, float exposure, Tonemap curve) {
-    std::vector<unsigned char> bytes(std::size_t(image.width) * image.height * 3);
+std::string encodeDisplayPng(const Image& image, float exposure, Tonemap curve) {
     float scale = std::exp2(exposure);
-    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
-        glm::vec3 c = tonemap(glm::vec3(image.pixels[i]), scale, static_cast<std::uint32_t>(curve));
-        for (int k = 0; k < 3; ++k) {
-            bytes[3 * i + k] = static_cast<unsigned char>(std::lround(c[k] * 255.0f));
-        }
-    }
-    return encodeRgb8Png(bytes.data(), image.width, image.height);
-}
-
-// OpenEXR, 32-bit float RGB, ZIP-compressed (as tinyexr's SaveEXR, but into memory).
-std::string encodeExr(const Image& image) {
-    std::size_t n = image.pixels.size();
-    std::vector<float> channels[3];  // B, G, R: the order EXR viewers expect
-    for (int c = 0; c < 3; ++c) {
-        channels[c].resize(n);
-        for (std::size_t i = 0; i < n; ++i) {
-            channels[c][i] = image.pixels[i][2 - c];
-        }
-    }
-    float* planes[3] = {channels[0].data(), channels[1].data(), channels[2].data()};
-    EXRImage exr;
-    InitEXRImage(&exr);
-    exr.num_channels = 3;
-    exr.images = reinterpret_cast<unsigned char**>(planes);
-    exr.width = int(image.width);
-    exr.height = int(image.height);
-    EXRHeader header;
-    InitEXRHeader(&header);
-    header.compression_type = image.width < 16 && image.height < 16 ? TINYEXR_COMPRESSIONTYPE_NONE : TINYEXR_COMPRESSIONTYPE_ZIP;
-    EXRChannelInfo info[3] = {};
-    const char* names[3] = {"B", "G", "R"};
-    int types[3] = {TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT};
-    for (int c = 0; c < 3; ++c) {
-        std::strncpy(info[c].name, names[c], sizeof(info[c].name) - 1);
-    }
-    header.num_channels = 3;
-    header.channels = info;
-    header.pixel_types = types;
-    header.requested_pixel_types = types;
-    unsigned char* memory = nullptr;
-    const char* err = nullptr;
-    std::size_t size = SaveEXRImageToMemory(&exr, &header, &memory, &err);
-    if (size == 0) {
-        std::string reason = err ? err : "unknown error";
-        FreeEXRErrorMessage(err);
-        throw RuntimeError("cannot encode the EXR image: " + reason);
-    }
-    std::string bytes(reinterpret_cast<const char*>(memory), size);
-    std::free(memory);
-    return bytes;
+    return encodePng(image.width, image.height, [&](std::uint32_t y, unsigned char* rgb) {
+        displayBytes(&image.pixels[std::size_t(y) * image.width], image.width, scale, curve, rgb);
+    });
 }
 
 // Portable float map: "PF", size, scale (negative: little-endian), rows bottom to top.
 std::string encodePfm(const Image& image) {
     std::string bytes = "PF\n" + std::to_string(image.width) + " " + std::to_string(image.height) + "\n-1.0\n";
+    bytes.reserve(bytes.size() + image.pixels.size() * 3 * sizeof(float));
     std::vector<float> row(std::size_t(image.width) * 3);
     for (std::uint32_t y = image.height; y-- > 0;) {
         for (std::uint32_t x = 0; x < image.width; ++x) {
@@ -171,21 +113,40 @@ ImageFormat imageFormatFor(const std::string& path) {
     throw InputError(path + ": unknown image format (use .png, .exr or .pfm)");
 }
 
+std::string encodeImage(ImageFormat format, const Image& image, float exposure, Tonemap curve) {
+    switch (format) {
+        case ImageFormat::Png: return encodeDisplayPng(image, exposure, curve);
+        case ImageFormat::Exr: return encodeExr(image);
+        case ImageFormat::Pfm: return encodePfm(image);
+    }
+    return {};
+}
+
 void writeImage(const std::string& path, const Image& image, float exposure, Tonemap curve) {
     if (!allFinite(image)) {
         throw RuntimeError(path + ": the image holds values that are not finite; nothing was written");
     }
+    ImageFormat format = imageFormatFor(path);
     std::string bytes;
-    switch (imageFormatFor(path)) {
-        case ImageFormat::Png: bytes = encodePng(image, exposure, curve); break;
-        case ImageFormat::Exr: bytes = encodeExr(image); break;
-        case ImageFormat::Pfm: bytes = encodePfm(image); break;
+    try {
+        bytes = encodeImage(format, image, exposure, curve);
+    } catch (const RuntimeError& e) {
+        throw RuntimeError(path + ": " + e.what());
     }
     writeOutputFile(path, bytes, "image");
 }
 
 void writeRgb8Png(const std::string& path, const unsigned char* rgb, std::uint32_t width, std::uint32_t height) {
-    writeOutputFile(path, encodeRgb8Png(rgb, width, height), "image");
+    std::size_t stride = std::size_t(width) * 3;
+    std::string png;
+    try {
+        png = encodePng(width, height, [&](std::uint32_t y, unsigned char* row) {
+            std::memcpy(row, rgb + stride * y, stride);
+        });
+    } catch (const RuntimeError& e) {
+        throw RuntimeError(path + ": " + e.what());
+    }
+    writeOutputFile(path, png, "image");
 }
 
 Image readImage(const std::string& path) {

@@ -27,9 +27,13 @@ enum class ImageFormat { Png, Exr, Pfm };
 // The format for a file name's extension; throws InputError for anything else.
 ImageFormat imageFormatFor(const std::string& path);
 
+// The file's bytes, in memory. Throws RuntimeError if an encoder fails.
+std::string encodeImage(ImageFormat format, const Image& image, float exposure, Tonemap tonemap);
+
 // Writes by extension, whole or not at all (core/system/output_file.h). PNG applies exposure (stops) and
-// the tone curve; EXR and PFM are linear. Throws RuntimeError if the file cannot be written, with
-// the OS's reason.
+// the tone curve; EXR and PFM are linear (core/image/png_writer.h, exr_writer.h say how). Throws
+// RuntimeError "<path>: <reason>" if the image cannot be encoded or the file cannot be written
+// (with the OS's reason).
 void writeImage(const std::string& path, const Image& image, float exposure, Tonemap tonemap);
 
 // An 8-bit RGB picture (display values) as PNG, whole or not at all.

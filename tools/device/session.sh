@@ -2,7 +2,7 @@
 # Runs on the GPU machine (its notes are outside this repository, in shared/device/README.md beside
 # the checkouts) from the project root, with the
 # binaries of `cmake --preset device && cmake --build --preset device` carried in build-device/bin
-# and .devlibs/ prepared. Writes logs and JSON under $OUT.
+# and .devlibs/ prepared by tools/device/prepare.sh. Writes logs and JSON under $OUT.
 #   tools/device/session.sh tests sanitize sanitize-new environment frames meshes converge pictures bundle-all
 set -uo pipefail
 source .devlibs/setup.sh >/dev/null
