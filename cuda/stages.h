@@ -15,8 +15,10 @@ namespace photon {
 
 // Launch shapes, tunable from photon-bench.
 struct LaunchConfig {
-    std::uint32_t photonBlock = 128;  // threads per block of the photon pass
-    std::uint32_t pixelBlockX = 16;   // pixel tile of the eye pass and the gather
+    // Photon pass 256 and tiles 8x8: the fastest of photon-bench --launch-sweep's 15 shapes on
+    // the H200 (Cornell 1080p, sppm: 2.984 ms against 3.038 for 128 and 16x8; docs/performance.md).
+    std::uint32_t photonBlock = 256;  // threads per block of the photon pass
+    std::uint32_t pixelBlockX = 8;    // pixel tile of the eye pass and the gather
     std::uint32_t pixelBlockY = 8;
     std::uint32_t gridBlocks = 1056;  // blocks of the grid-stride loops over stored photons
     bool pinnedReadback = true;       // images come back through pinned memory (else pageable)
