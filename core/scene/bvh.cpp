@@ -467,7 +467,14 @@ BvhStats buildBvh(const Scene& scene, std::vector<BvhNode>& nodes, std::vector<s
         root.box.grow(boxes[c]);
         root.centroids.grow(centroidBoxes[c]);
     }
+    auto since = [](std::chrono::steady_clock::time_point t) {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+    };
+    stats.prepareSeconds = since(start);
+    auto built = std::chrono::steady_clock::now();
     ParallelBuild(items, nodes).run(root);
+    stats.topSeconds = since(built);  // top levels and subtrees together: one queue
+    auto flattened = std::chrono::steady_clock::now();
     refs.resize(items.size());
     parallelFor(items.size(), 65536, [&](std::size_t a, std::size_t b) {
         for (std::size_t i = a; i < b; ++i) {
@@ -481,7 +488,8 @@ BvhStats buildBvh(const Scene& scene, std::vector<BvhNode>& nodes, std::vector<s
                          " levels deep, more than the " + std::to_string(BVH_STACK_SIZE) +
                          " its traversal can follow (many primitives in one place?)");
     }
-    stats.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    stats.flattenSeconds = since(flattened);
+    stats.buildSeconds = since(start);
     return stats;
 }
 

@@ -22,6 +22,13 @@ struct BvhStats {
     std::uint32_t depth = 0;       // inner nodes on the longest path from the root
     double sahCost = 0.0;          // Σ area(inner)/area(root) + Σ area(leaf)/area(root)·primitives
     double buildSeconds = 0.0;
+    // Where buildSeconds went: the primitives' boxes and centroids and the root's bounds; the top
+    // levels (split across all threads); the subtrees below them (one thread each); the nodes
+    // and references gathered into their arrays and measured.
+    double prepareSeconds = 0.0;
+    double topSeconds = 0.0;
+    double subtreeSeconds = 0.0;
+    double flattenSeconds = 0.0;
 };
 
 // Builds the hierarchy of the scene's spheres, quads and triangles into `nodes` and `refs`
