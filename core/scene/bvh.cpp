@@ -504,6 +504,16 @@ public:
                 }
                 s.nodes.push_back(emptyNode());
                 m.depth = std::max(m.depth, p.range.depth);
+                if (p.range.count <= 2 * kMaxLeaf) {
+                    // Two leaves, by the exact SAH cost along the longest axis.
+                    const std::uint32_t at = p.range.first;
+                    Box lb;
+                    Box rb;
+                    std::uint32_t k = splitSmall(boxes + at, ids + at, p.range.count, longestAxis(p.range.bounds), lb, rb);
+                    fill(s.nodes[index], false, lb, first + at, k, 0, true, m);
+                    fill(s.nodes[index], true, rb, first + at + k, p.range.count - k, 0, true, m);
+                    continue;
+                }
                 Range left;
                 Range right;
                 split(boxes, ids, p.range, left, right);
@@ -521,6 +531,56 @@ public:
 
 private:
     static float centroid(const PrimBox& p, int axis) { return p.lo[axis] + p.hi[axis]; }
+
+    // Splits n = kMaxLeaf + 1 .. 2 kMaxLeaf primitives into two leaves, in place: sorted by
+    // centroid along `axis` (ties keep their order), cut where area(left) · n(left) +
+    // area(right) · n(right) is lowest among the cuts that leave at most kMaxLeaf on a side.
+    // Returns the left side's count.
+    static std::uint32_t splitSmall(PrimBox* boxes, std::uint32_t* ids, std::uint32_t n, int axis, Box& left,
+                                    Box& right) {
+        constexpr std::uint32_t kMax = 2 * kMaxLeaf;
+        float key[kMax];
+        std::uint32_t order[kMax];
+        for (std::uint32_t i = 0; i < n; ++i) {
+            key[i] = centroid(boxes[i], axis);
+            order[i] = i;
+            for (std::uint32_t j = i; j > 0 && key[order[j - 1]] > key[i]; --j) {
+                std::swap(order[j - 1], order[j]);
+            }
+        }
+        PrimBox sorted[kMax];
+        std::uint32_t sortedIds[kMax];
+        for (std::uint32_t i = 0; i < n; ++i) {
+            sorted[i] = boxes[order[i]];
+            sortedIds[i] = ids[order[i]];
+        }
+        Box prefix[kMax];
+        Box suffix[kMax];
+        Box acc;
+        for (std::uint32_t i = 0; i + 1 < n; ++i) {
+            acc.grow(_mm_load_ps(sorted[i].lo), _mm_load_ps(sorted[i].hi));
+            prefix[i + 1] = acc;
+        }
+        acc = Box{};
+        for (std::uint32_t i = n - 1; i > 0; --i) {
+            acc.grow(_mm_load_ps(sorted[i].lo), _mm_load_ps(sorted[i].hi));
+            suffix[i] = acc;
+        }
+        float bestCost = FLOAT_MAX;
+        std::uint32_t best = kMaxLeaf;  // always allowed
+        for (std::uint32_t k = n - kMaxLeaf; k <= kMaxLeaf; ++k) {
+            float cost = prefix[k].area() * float(k) + suffix[k].area() * float(n - k);
+            if (cost < bestCost) {
+                bestCost = cost;
+                best = k;
+            }
+        }
+        std::copy(sorted, sorted + n, boxes);
+        std::copy(sortedIds, sortedIds + n, ids);
+        left = prefix[best];
+        right = suffix[best];
+        return best;
+    }
 
     // Splits a range of more than kMaxLeaf primitives and measures both sides.
     static void split(PrimBox* boxes, std::uint32_t* ids, const Range& r, Range& left, Range& right) {
@@ -553,40 +613,31 @@ private:
             measureFromBins(bins, s, left, right);
             return;
         }
-        // Two sets of bins for alternate primitives: neighbours often fall into the same bin,
-        // and with one set each would wait for the other's update.
         // The shortest axis is left out: splits across it are almost never the best (measured:
         // the SAH cost of the trees is the same), and binning it costs a third of the binning.
         // Every primitive is binned (a sample misses the few large ones, such as walls, that
         // decide the cost of a scene's top nodes).
         const int skip = shortestAxis(r.bounds);
-        Bins<kBins> bins[2] = {Bins<kBins>(skip), Bins<kBins>(skip)};
+        Bins<kBins> bins(skip);
         switch (skip) {
             case 0: binRange<0>(bins, map, boxes, r.first, end); break;
             case 1: binRange<1>(bins, map, boxes, r.first, end); break;
             default: binRange<2>(bins, map, boxes, r.first, end); break;
         }
-        bins[0].merge(bins[1], skip);
-        Split s = chooseSplit(r, bins[0], skip);
+        Split s = chooseSplit(r, bins, skip);
         if (s.kind == Split::MEDIAN) {
             splitAtMedian(boxes, ids, r, s.axis, left, right);
             return;
         }
         partition(boxes, ids, r, s, map, left, right);
-        measureFromBins(bins[0].axis(s.axis), s, left, right);
+        measureFromBins(bins.axis(s.axis), s, left, right);
     }
 
-    // Bins primitives first .. end into two sets, alternately.
     template <int Skip>
-    static void binRange(Bins<kBins>* bins, const BinMap<kBins>& map, const PrimBox* boxes, std::uint32_t first,
+    static void binRange(Bins<kBins>& bins, const BinMap<kBins>& map, const PrimBox* boxes, std::uint32_t first,
                          std::uint32_t end) {
-        std::uint32_t i = first;
-        for (; i + 1 < end; i += 2) {
-            bins[0].add<Skip>(map, boxes[i]);
-            bins[1].add<Skip>(map, boxes[i + 1]);
-        }
-        if (i < end) {
-            bins[0].add<Skip>(map, boxes[i]);
+        for (std::uint32_t i = first; i < end; ++i) {
+            bins.add<Skip>(map, boxes[i]);
         }
     }
 
@@ -822,18 +873,11 @@ private:
             return;
         }
         BinMap<kBins> map(o.bounds);
-        Bins<kBins> bins[2] = {Bins<kBins>(), Bins<kBins>()};
-        std::uint32_t i = o.first;
-        const std::uint32_t end = o.first + o.count;
-        for (; i + stride < end; i += 2 * stride) {
-            bins[0].add(map, p_.box(index[i]));
-            bins[1].add(map, p_.box(index[i + stride]));
+        Bins<kBins> bins;
+        for (std::uint32_t i = o.first; i < o.first + o.count; i += stride) {
+            bins.add(map, p_.box(index[i]));
         }
-        if (i < end) {
-            bins[0].add(map, p_.box(index[i]));
-        }
-        bins[0].merge(bins[1]);
-        o.split = chooseSplit(r, bins[0]);
+        o.split = chooseSplit(r, bins);
     }
 
     void partitionChunk(const Open& o, Chunk& chunk) const {
