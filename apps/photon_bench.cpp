@@ -10,6 +10,8 @@
 //                (cost over triangle count: BVH build, primary rays, photon paths, frames)
 //   photon-bench --image-writers [--resolutions 1920x1080,3840x2160 --writes 11 --image-dir DIR]
 //                (each image format and EXR compression of one rendered frame: size and write time)
+//   photon-bench --bvh-builds 7 --scenes mesh:100000,mesh:1000000 --threads 1,0
+//                (the BVH build alone: median time, its phases and the SAH cost; no frames)
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -27,6 +29,7 @@
 #include "core/frame/buffers.h"
 #include "core/frame/median.h"
 #include "core/loaders/scene_loader.h"
+#include "core/scene/bvh.h"
 #include "core/settings/setting_specs.h"
 #include "core/system/error.h"
 #include "core/system/output_file.h"
@@ -103,6 +106,52 @@ void printSceneCost(const std::string& name, const Scene& scene) {
                 rate / double(workerThreads()), std::size_t(workerThreads()), b.nodes, b.depth, b.sahCost,
                 j.value("bytes_per_triangle", 0.0), formatMiB(j["total_bytes"].get<std::uint64_t>()).c_str());
     std::fflush(stdout);
+}
+
+// Builds the scene's hierarchy `builds` times on each thread count (0: all) and prints the
+// median build and its phases, with the tree's size and SAH cost (the same for every count).
+nlohmann::json benchBvhBuilds(const std::string& name, const Scene& scene, std::uint32_t builds,
+                              const std::vector<unsigned>& threadCounts) {
+    nlohmann::json rows = nlohmann::json::array();
+    for (unsigned threads : threadCounts) {
+        setThreadLimit(threads);
+        std::vector<double> total, prepare, top, subtrees, flatten;
+        BvhStats b;
+        for (std::uint32_t i = 0; i < builds; ++i) {
+            std::vector<BvhNode> nodes;  // new every time, as Scene::finalize's are
+            std::vector<std::uint32_t> refs;
+            b = buildBvh(scene, nodes, refs);
+            total.push_back(b.buildSeconds);
+            prepare.push_back(b.prepareSeconds);
+            top.push_back(b.topSeconds);
+            subtrees.push_back(b.subtreeSeconds);
+            flatten.push_back(b.flattenSeconds);
+        }
+        unsigned used = threadLimit();
+        setThreadLimit(0);
+        double seconds = median(total);
+        double rate = seconds > 0 ? double(b.primitives) / seconds / 1e6 : 0.0;
+        double fastest = *std::min_element(total.begin(), total.end());
+        std::printf("%-16s %10u %7u %9.4f %9.4f %8.1f %8.2f %8.4f %8.4f %8.4f %8.4f %9u %5u %9.2f\n", name.c_str(),
+                    b.primitives, used, seconds, fastest, rate, rate / used, median(prepare), median(top),
+                    median(subtrees), median(flatten), b.nodes, b.depth, b.sahCost);
+        std::fflush(stdout);
+        rows.push_back({{"scene", name},
+                        {"primitives", b.primitives},
+                        {"threads", used},
+                        {"builds", builds},
+                        {"seconds", seconds},
+                        {"fastest_seconds", fastest},
+                        {"prepare_seconds", median(prepare)},
+                        {"top_seconds", median(top)},
+                        {"subtree_seconds", median(subtrees)},
+                        {"flatten_seconds", median(flatten)},
+                        {"nodes", b.nodes},
+                        {"leaves", b.leaves},
+                        {"depth", b.depth},
+                        {"sah_cost", b.sahCost}});
+    }
+    return rows;
 }
 
 double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
@@ -303,6 +352,8 @@ int run(int argc, char** argv) {
     bool imageWriters = false;
     std::uint32_t writes = 11;
     std::string imageDir = ".";
+    std::uint32_t bvhBuilds = 0;
+    std::string threads = "0";
     BackendOptions options;
     app.add_option("--backends", backends, "Comma-separated: cpu,cuda,vulkan");
     app.add_option("--scenes", scenes, "Comma-separated scene names (files in --scenes-dir; cornell is built in)");
@@ -318,6 +369,9 @@ int run(int argc, char** argv) {
     app.add_option("--grid-sweep", gridSweep, "Comma-separated photon counts: grid build rate at 320x240");
     app.add_flag("--launch-sweep", launchSweep, "CUDA: sweep block shapes of every stage");
     app.add_flag("--primary-rays", primaryRays, "CUDA: also time primary rays alone (nearest hit, no shading) per case");
+    app.add_option("--bvh-builds", bvhBuilds, "Time only the BVH build of each scene, this many times (no frames)")
+        ->check(CLI::Range(1u, 10000u));
+    app.add_option("--threads", threads, "With --bvh-builds: comma-separated thread counts to build on (0: all)");
     app.add_flag("--readback", readback, "CUDA: time reading the image back through pinned and pageable memory");
     app.add_flag("--image-writers", imageWriters, "Time the image files of one frame of the first scene "
                                                   "instead (on the first backend; default resolutions 1920x1080,3840x2160)");
@@ -427,6 +481,37 @@ int run(int argc, char** argv) {
         }
         return cases;
     };
+
+    if (bvhBuilds > 0) {
+        std::vector<unsigned> threadCounts;
+        for (const std::string& t : splitList(threads)) {
+            std::size_t end = 0;
+            unsigned long n = 0;
+            try {
+                n = std::stoul(t, &end);
+            } catch (const std::exception&) {
+                end = 0;
+            }
+            if (end == 0 || end != t.size() || n > 4096) {
+                throw InputError("--threads: " + quote(t) + " is not a thread count (0: all)");
+            }
+            threadCounts.push_back(unsigned(n));
+        }
+        std::printf("%-16s %10s %7s %9s %9s %8s %8s %8s %8s %8s %8s %9s %5s %9s\n", "scene", "prims", "threads",
+                    "median s", "min s", "M/s", "M/s/core", "prepare", "top", "subtrees", "flatten", "nodes", "depth",
+                    "SAH");
+        nlohmann::json rows = nlohmann::json::array();
+        for (const std::string& sceneName : splitList(scenes)) {
+            Scene scene = sceneNamed(sceneName, scenesDir);  // built once by its finalize: a warm-up
+            for (nlohmann::json& r : benchBvhBuilds(sceneName, scene, bvhBuilds, threadCounts)) {
+                rows.push_back(r);
+            }
+        }
+        if (!jsonPath.empty()) {
+            writeOutputFile(jsonPath, nlohmann::json{{"bvh_builds", rows}}.dump(2) + "\n", "JSON table");
+        }
+        return 0;
+    }
 
     std::vector<Row> rows;
     double processToFirstImage = 0.0;

@@ -4,12 +4,15 @@
 // shape: every primitive in exactly one leaf, every child's box holding its primitives.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <filesystem>
 #include <random>
 
 #include "core/loaders/scene_loader.h"
+#include "core/system/parallel.h"
 #include "shared/intersect.h"
 #include "test_util.h"
+#include "tools/bench_scenes.h"
 
 namespace photon {
 namespace {
@@ -182,6 +185,41 @@ TEST(Bvh, EveryPrimitiveOnceInsideItsBoxes) {
     EXPECT_LT(s.bvh.depth, BVH_STACK_SIZE);
     std::printf("bvh: %u primitives, %u nodes, %u leaves, depth %u, SAH cost %.1f\n", s.bvh.primitives, s.bvh.nodes,
                 s.bvh.leaves, s.bvh.depth, s.bvh.sahCost);
+}
+
+// The hierarchy depends on the scene alone: built on one thread (every chunk in order) and on all,
+// and built again, its nodes and references are the same bytes. The scenes are large enough that
+// the top levels split their nodes over many chunks and leave many subtrees: a random soup (no
+// order in memory) and the bench's mesh in the Cornell box (made in order, with walls).
+TEST(Bvh, SameBytesOnAnyThreadCount) {
+    std::vector<Scene> scenes;
+    scenes.push_back(randomSoup(300000, 5));
+    scenes.push_back(tools::meshBenchScene(400000));
+    for (const Scene& s : scenes) {
+        SCOPED_TRACE(std::to_string(s.triangles.size()) + " triangles");
+        setThreadLimit(1);
+        std::vector<BvhNode> serialNodes;
+        std::vector<std::uint32_t> serialRefs;
+        BvhStats serial = buildBvh(s, serialNodes, serialRefs);
+        setThreadLimit(0);
+        std::printf("bvh: %u primitives on 1 and %u threads: %u nodes, SAH cost %.3f\n", serial.primitives,
+                    workerThreads(), serial.nodes, serial.sahCost);
+        ASSERT_GT(serial.nodes, 1000u);
+        for (int repeat = 0; repeat < 3; ++repeat) {
+            std::vector<BvhNode> nodes;
+            std::vector<std::uint32_t> refs;
+            BvhStats parallel = buildBvh(s, nodes, refs);
+            ASSERT_EQ(nodes.size(), serialNodes.size());
+            ASSERT_EQ(refs.size(), serialRefs.size());
+            EXPECT_EQ(std::memcmp(nodes.data(), serialNodes.data(), nodes.size() * sizeof(BvhNode)), 0);
+            EXPECT_EQ(std::memcmp(refs.data(), serialRefs.data(), refs.size() * sizeof(std::uint32_t)), 0);
+            EXPECT_EQ(parallel.sahCost, serial.sahCost);
+            EXPECT_EQ(parallel.depth, serial.depth);
+            EXPECT_EQ(parallel.leaves, serial.leaves);
+        }
+        // And the scene's own hierarchy (built by finalize, on all threads) is the same.
+        EXPECT_EQ(std::memcmp(s.bvhNodes.data(), serialNodes.data(), serialNodes.size() * sizeof(BvhNode)), 0);
+    }
 }
 
 // A million triangles in one spot: the hierarchy falls back to median splits and stays within

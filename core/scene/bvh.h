@@ -1,9 +1,11 @@
 // The bounding volume hierarchy over a scene's bounded primitives (spheres, quads, triangles;
 // planes are infinite and stay apart), built on the host and traversed by shared/intersect.h on
 // every backend. Binned SAH (Wald, "On fast Construction of SAH-based Bounding Volume
-// Hierarchies", 2007): at every node, primitives are binned by centroid into 16 bins along each
-// axis and split where the surface area heuristic is lowest; leaves hold at most 4 primitives.
-// The top levels bin in parallel, the subtrees below them are built on all cores at once.
+// Hierarchies", 2007): at every node, primitives are binned by centroid into 8 bins along each
+// axis that may hold the split and split where the surface area heuristic is lowest; leaves hold
+// at most 4 primitives. The top levels are split one level at a time on all threads, the
+// subtrees below them each by one thread (core/scene/bvh.cpp says how). The result depends on
+// the scene alone: the same nodes and references on any number of threads.
 #pragma once
 
 #include <cstdint>
@@ -22,6 +24,13 @@ struct BvhStats {
     std::uint32_t depth = 0;       // inner nodes on the longest path from the root
     double sahCost = 0.0;          // Σ area(inner)/area(root) + Σ area(leaf)/area(root)·primitives
     double buildSeconds = 0.0;
+    // Where buildSeconds went: the primitives' centroids; the top levels (split across all
+    // threads); the subtrees below them (one thread each); the nodes gathered into their array
+    // and measured.
+    double prepareSeconds = 0.0;
+    double topSeconds = 0.0;
+    double subtreeSeconds = 0.0;
+    double flattenSeconds = 0.0;
 };
 
 // Builds the hierarchy of the scene's spheres, quads and triangles into `nodes` and `refs`

@@ -17,8 +17,9 @@ class ThreadPool {
 public:
     ThreadPool() {
         unsigned n = std::max(1u, std::thread::hardware_concurrency());
+        limit_ = n;
         for (unsigned i = 1; i < n; ++i) {
-            workers_.emplace_back([this] { workerLoop(); });
+            workers_.emplace_back([this, i] { workerLoop(i); });
         }
     }
 
@@ -34,6 +35,13 @@ public:
     }
 
     unsigned threads() const { return static_cast<unsigned>(workers_.size() + 1); }
+
+    // The threads that take chunks from now on (the caller's and workers 1 .. limit - 1).
+    unsigned limit() const { return limit_.load(); }
+    void setLimit(unsigned n) {
+        std::lock_guard<std::mutex> one(runMutex_);  // not while a parallelFor runs
+        limit_.store(std::clamp(n, 1u, threads()));
+    }
 
     // Returns only once every worker is done with the body; an exception thrown by any chunk
     // (std::bad_alloc, say) stops the handing out of chunks and is rethrown here, after that.
@@ -79,7 +87,7 @@ private:
         }
     }
 
-    void workerLoop() {
+    void workerLoop(unsigned index) {
         std::uint64_t seen = 0;
         for (;;) {
             {
@@ -90,7 +98,9 @@ private:
                 }
                 seen = generation_;
             }
-            work();
+            if (index < limit_.load()) {
+                work();
+            }
             {
                 std::lock_guard<std::mutex> lock(mutex_);
                 active_ -= 1;
@@ -108,6 +118,7 @@ private:
     std::size_t count_ = 0;
     std::size_t grain_ = 1;
     std::atomic<std::size_t> next_{0};
+    std::atomic<unsigned> limit_{1};
     std::size_t active_ = 0;
     std::uint64_t generation_ = 0;
     std::exception_ptr failure_;
@@ -133,5 +144,9 @@ void parallelFor(std::size_t count, std::size_t grain, const std::function<void(
 }
 
 unsigned workerThreads() { return pool().threads(); }
+
+unsigned threadLimit() { return pool().limit(); }
+
+void setThreadLimit(unsigned threads) { pool().setLimit(threads == 0 ? pool().threads() : threads); }
 
 }  // namespace photon

@@ -13,6 +13,13 @@ namespace photon {
 // no further chunks start and the exception reaches the caller once every thread has stopped.
 void parallelFor(std::size_t count, std::size_t grain, const std::function<void(std::size_t, std::size_t)>& body);
 
+// The pool's threads, the caller's included (one per hardware thread).
 unsigned workerThreads();
+
+// How many of them parallelFor uses (all unless set): 1 runs every chunk on the caller's thread,
+// in order, as a reference for results that must not depend on the thread count, and for
+// measuring how a stage scales. 0 restores all. Not to be called during a parallelFor.
+unsigned threadLimit();
+void setThreadLimit(unsigned threads);
 
 }  // namespace photon
