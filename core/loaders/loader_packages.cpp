@@ -1,4 +1,4 @@
-// The loader packages' implementations (tinyobjloader, tinygltf, tinyexr), compiled from the
+// The loader packages' implementations (tinyobjloader, tinygltf; tinyexr in tinyexr_package.cpp), compiled from the
 // headers the Debian packages ship: only in the fuzz build (PHOTON_LOADER_SOURCES), so that
 // sanitizers and coverage reach into them. Images are decoded by texture_loader.cpp, not by
 // tinygltf; stb_image stays the Debian library (environment_loader.cpp walks the HDR pixel data
@@ -11,6 +11,3 @@
 #define TINYGLTF_NO_STB_IMAGE_WRITE
 #define TINYGLTF_NO_EXTERNAL_IMAGE
 #include <tiny_gltf.h>
-
-#define TINYEXR_IMPLEMENTATION
-#include <tinyexr.h>
