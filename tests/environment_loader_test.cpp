@@ -266,5 +266,16 @@ TEST_F(EnvironmentLoader, FuzzSeedsLoad) {
     expectTexels(decreasing, 3, 2, loadEnvironmentMap((seeds / "none.exr").string()).texels, 0.0f);
 }
 
+// Inputs the fuzzer once crashed a decoder with are bad maps: each is one InputError naming it.
+TEST_F(EnvironmentLoader, FuzzFindingsAreRefusedByName) {
+    fs::path findings = fs::path(PHOTON_SOURCE_DIR) / "tests/fuzz/findings/environment_loader_fuzz";
+    int count = 0;
+    for (const fs::directory_entry& finding : fs::directory_iterator(findings)) {
+        expectError(finding.path().string(), "");
+        count += 1;
+    }
+    EXPECT_GE(count, 1);
+}
+
 }  // namespace
 }  // namespace photon

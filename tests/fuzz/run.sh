@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Builds the fuzz targets with clang (AddressSanitizer, UBSan, fuzzer coverage over the core and the
 # CPU backend) in their own build directory and runs each for $1 seconds (default 60), seeded from
-# the shipped scenes (scenes/*.json, *.obj) and the committed corpus in tests/fuzz/corpus/ (its
-# environment maps are written by photon-make-environment-corpus). Exits non-zero if libFuzzer
+# the shipped scenes (scenes/*.json, *.obj), the committed corpus in tests/fuzz/corpus/ (its
+# environment maps are written by photon-make-environment-corpus) and the inputs earlier runs found
+# crashes with, in tests/fuzz/findings/ (bad files the loaders must refuse with a message). Exits non-zero if libFuzzer
 # finds a crash, a sanitizer report, a leak or a slow input; the input that did it is left in
 # <build>/fuzz-artifacts/<target>.
 # Usage: tests/fuzz/run.sh [seconds] [build-dir]   (build-dir defaults to build-fuzz)
@@ -29,9 +30,11 @@ for target in "${targets[@]}"; do
     scene_loader_fuzz | render_fuzz) cp "$root"/scenes/*.json "$corpus"/ ;;
     obj_loader_fuzz) cp "$root"/scenes/*.obj "$corpus"/ ;;
   esac
-  if [ -d "$root/tests/fuzz/corpus/$target" ]; then
-    cp "$root/tests/fuzz/corpus/$target"/* "$corpus"/
-  fi
+  for committed in corpus findings; do
+    if [ -d "$root/tests/fuzz/$committed/$target" ]; then
+      cp "$root/tests/fuzz/$committed/$target"/* "$corpus"/
+    fi
+  done
   echo "== $target for $seconds s"
   "$build/bin/$target" "$corpus" -max_total_time="$seconds" -max_len=65536 -rss_limit_mb=2048 \
     -timeout=10 -artifact_prefix="$artifacts/" -print_final_stats=1 || {
