@@ -161,8 +161,9 @@ private:
 
     void gather() {
         const FrameParams& params = bindings_.params;
+        bool start = sppmStarts(params.estimator, params.view, params.accumulated);
         forEachPixel([&](std::uint32_t p) {
-            bindings_.frameRadiance[p] = glm::vec4(gatherStage(bindings_, p, params.estimator, params.globalMode), 1.0f);
+            bindings_.frameRadiance[p] = glm::vec4(gatherStage(bindings_, p, params.estimator, params.globalMode, start), 1.0f);
         });
     }
 

@@ -84,13 +84,13 @@ __global__ void tracePrimaryRaysKernel(Bindings b, uint* hits) {
     }
 }
 
-// One kernel per estimator and global mode: constants fold away the others' code (the k-nearest
-// heap, final gather), which would otherwise cost registers and stack in every variant.
-template <uint Estimator, uint GlobalMode>
+// One kernel per estimator, global mode and sppm start: constants fold away the others' code (the
+// k-nearest heap, final gather), which would otherwise cost registers and stack in every variant.
+template <uint Estimator, uint GlobalMode, bool SppmStart>
 __global__ void __launch_bounds__(kGatherThreads, gatherMinBlocks(GlobalMode)) gatherKernel(Bindings b) {
     uint p;
     if (pixelOf(b, p)) {
-        b.frameRadiance[p] = vec4(gatherStage(b, p, Estimator, GlobalMode), 1.0f);
+        b.frameRadiance[p] = vec4(gatherStage(b, p, Estimator, GlobalMode, SppmStart), 1.0f);
     }
 }
 
@@ -148,9 +148,21 @@ template <uint Estimator>
 void gatherWith(const Bindings& b, const LaunchConfig& c, cudaStream_t s) {
     dim3 grid = pixelGrid(b, c);
     dim3 block(c.pixelBlockX, c.pixelBlockY);
+    if constexpr (Estimator == ESTIMATOR_SPPM) {
+        // sppm is direct mode only (validated on the host).
+        if (b.params.globalMode != GLOBAL_DIRECT) {
+            throw std::logic_error("CUDA gather: sppm in global mode " + std::to_string(b.params.globalMode));
+        }
+        if (sppmStarts(Estimator, b.params.view, b.params.accumulated)) {
+            gatherKernel<Estimator, GLOBAL_DIRECT, true><<<grid, block, 0, s>>>(b);
+        } else {
+            gatherKernel<Estimator, GLOBAL_DIRECT, false><<<grid, block, 0, s>>>(b);
+        }
+        return;
+    }
     switch (b.params.globalMode) {
-        case GLOBAL_DIRECT: gatherKernel<Estimator, GLOBAL_DIRECT><<<grid, block, 0, s>>>(b); break;
-        case GLOBAL_FINAL_GATHER: gatherKernel<Estimator, GLOBAL_FINAL_GATHER><<<grid, block, 0, s>>>(b); break;
+        case GLOBAL_DIRECT: gatherKernel<Estimator, GLOBAL_DIRECT, false><<<grid, block, 0, s>>>(b); break;
+        case GLOBAL_FINAL_GATHER: gatherKernel<Estimator, GLOBAL_FINAL_GATHER, false><<<grid, block, 0, s>>>(b); break;
         default: throw std::logic_error("CUDA gather: unknown global mode " + std::to_string(b.params.globalMode));
     }
 }

@@ -42,7 +42,7 @@ void main() {
     Photon p;
     uint store = photonBounce(path, p) + key.x + photonSortKeyBits(params, MAP_GLOBAL);
     hitPoints[i] = tracePixel(i);
-    frameRadiance[i] = vec4(gatherPixel(i) + gatherStage(i, ESTIMATOR_SPPM, GLOBAL_DIRECT), float(store));
+    frameRadiance[i] = vec4(gatherPixel(i) + gatherStage(i, ESTIMATOR_SPPM, GLOBAL_DIRECT, true), float(store));
     accumulation[i] = accumulatePixel(i);
     accumulation[i] = accumulateMean(accumulation[i], frameRadiance[i], params.accumulated);
     photonKeys[i] = photonCellKey(p.position, params.grids[0]);

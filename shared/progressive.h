@@ -26,6 +26,15 @@ PH_FN vec4 accumulateMean(vec4 mean, vec4 frame, uint n) {
     return mean + (frame - mean) / float(n + 1u);
 }
 
+// Whether this frame's gather starts sppm's statistics (sppm.h): its pixels then take their first
+// radii from the photons (the gather's start variant, a compile-time constant on the GPUs, since
+// the search's heap would cost every later frame's gather registers). A visible point that first
+// appears in a later frame (a pixel's jittered ray that missed until then) starts at the
+// even-spread guess.
+PH_FN bool sppmStarts(uint estimator, uint view, uint accumulated) {
+    return estimator == ESTIMATOR_SPPM && view != VIEW_GRID && accumulated == 0u;
+}
+
 PH_NAMESPACE_END
 
 #endif

@@ -14,9 +14,11 @@
 // mean direct light plus τ / (k π R²) for each map. Direct light stays with the shadow rays of the
 // eye pass.
 //
-// The first radius of a pixel is a number of pixel footprints at its visible point (the host picks
-// it from the photon density, FrameParams.sppm[map].firstFootprints), so it knows the image, not the
-// scene's bounds. Radii then differ from pixel to pixel by orders of magnitude: the grid's cells
+// The first radius of a pixel comes from the photons around its visible point, as in Hachisuka,
+// Ogaki & Jensen's progressive photon mapping (2008): the distance to its k-th nearest photon of
+// the first frame (sppmFirstRadius), so that a dense caustic starts sharp and a dim corner starts
+// wide enough to see photons at all. It is measured in pixel footprints, so it knows the image,
+// not the scene's bounds. Radii then differ from pixel to pixel by orders of magnitude: the grid's cells
 // follow the median radius of the pixels with photons (each frame's GridParams.radius, from the
 // histogram COUNTER_SPPM_HISTOGRAM of the frame before), a wider query visits more cells,
 // filtered (estimate.h), so that its cost stays that of its disc, and a pixel without photons is
@@ -48,6 +50,25 @@ PH_FN SppmPixel emptySppmPixel() {
     return s;
 }
 
+// The first radius at a visible point: the distance to its firstNeighbours-th nearest photon of
+// this frame, searched in discs that double from firstFootprints footprints (the even-spread
+// guess) SPPM_FIRST_STEPS times, the widest taken by a point with fewer photons; never below
+// SPPM_FIRST_MIN_FOOTPRINTS of a pixel. Outlined: the heap stays out of the gather's loop.
+PH_FN_OUTLINED float sppmFirstRadius(BUF_PARAM uint map, PH_IN(Shading) s, float footprint, float u) {
+    GridParams grid = BUF(params).grids[map];
+    uint k = clamp(BUF(params).sppm[map].firstNeighbours, 1u, KNN_MAX);
+    float reach = footprint * BUF(params).sppm[map].firstFootprints;
+    KnnHeap h;
+    for (uint step = 0u; step < SPPM_FIRST_STEPS; ++step) {
+        knnSearch(BUF_ARG grid, s, reach, k, u, h);
+        if (h.count == k) {
+            return max(sqrt(h.distance[0]), footprint * SPPM_FIRST_MIN_FOOTPRINTS);
+        }
+        reach *= step + 1u < SPPM_FIRST_STEPS ? 2.0f : 1.0f;
+    }
+    return reach;
+}
+
 // One map's statistics of one pixel.
 struct SppmEstimate {
     vec3 flux;
@@ -57,7 +78,7 @@ struct SppmEstimate {
 
 // This frame's photons of `map` at the visible point, folded into its statistics. Returns the
 // frame's own estimate Φ / (πR²) (for the single-frame image).
-PH_FN vec3 sppmUpdate(BUF_PARAM uint map, PH_IN(Shading) s, vec3 weight, float footprint, float u,
+PH_FN vec3 sppmUpdate(BUF_PARAM uint map, PH_IN(Shading) s, vec3 weight, float footprint, float u, bool start,
                       PH_INOUT(SppmEstimate) e) {
     GridParams grid = BUF(params).grids[map];
     if (grid.photonCapacity == 0u) {
@@ -65,7 +86,13 @@ PH_FN vec3 sppmUpdate(BUF_PARAM uint map, PH_IN(Shading) s, vec3 weight, float f
     }
     if (e.radius == 0.0f) {
         float first = BUF(params).sppm[map].firstRadius;
-        e.radius = first > 0.0f ? first : footprint * BUF(params).sppm[map].firstFootprints;
+        if (first > 0.0f) {
+            e.radius = first;
+        } else if (start) {
+            e.radius = sppmFirstRadius(BUF_ARG map, s, footprint, u);
+        } else {
+            e.radius = footprint * BUF(params).sppm[map].firstFootprints;
+        }
     }
     if (e.count == 0.0f) {
         // A pixel that has found no photon yet (its τ is 0) is held to the radius the cells follow:
@@ -110,7 +137,7 @@ PH_FN vec3 sppmUpdate(BUF_PARAM uint map, PH_IN(Shading) s, vec3 weight, float f
 // One map's pass of the sppm gather at a pixel's visible point: its statistics read, updated
 // with this frame's photons and written back. Each map's pass reads what it needs itself, so that
 // nothing of the other map's pass is kept in registers across its loop over photons.
-PH_FN vec3 gatherSppmMap(BUF_PARAM uint pixel, uint map, float u) {
+PH_FN vec3 gatherSppmMap(BUF_PARAM uint pixel, uint map, float u, bool start) {
     HitPoint hp = BUF(hitPoints)[pixel];
     Shading s = hitPointShading(BUF_ARG hp);
     SppmEstimate e;
@@ -123,7 +150,7 @@ PH_FN vec3 gatherSppmMap(BUF_PARAM uint pixel, uint map, float u) {
         e.count = BUF(sppmPixels)[pixel].count[map];
     }
     float footprint = pixelFootprint(BUF(params).camera, BUF(params).height, hp.position);
-    vec3 estimate = sppmUpdate(BUF_ARG map, s, hp.weight, footprint, u, e);
+    vec3 estimate = sppmUpdate(BUF_ARG map, s, hp.weight, footprint, u, start, e);
     BUF(sppmPixels)[pixel].maps[map].flux = e.flux;
     BUF(sppmPixels)[pixel].maps[map].radius = e.radius;
     BUF(sppmPixels)[pixel].count[map] = e.count;
@@ -132,7 +159,7 @@ PH_FN vec3 gatherSppmMap(BUF_PARAM uint pixel, uint map, float u) {
 
 // The gather stage under sppm: updates the pixel's statistics and returns this frame's own
 // estimate (frameRadiance; STAGE_ACCUMULATE makes the image from the statistics).
-PH_FN vec3 gatherSppm(BUF_PARAM uint pixel) {
+PH_FN vec3 gatherSppm(BUF_PARAM uint pixel, bool start) {
     uint view = BUF(params).view;
     uint accumulated = BUF(params).accumulated;
     vec3 direct = BUF(hitPoints)[pixel].direct;
@@ -147,7 +174,7 @@ PH_FN vec3 gatherSppm(BUF_PARAM uint pixel) {
         float u = rngNext(rng);
         vec3 shown = vec3(0.0f);
         for (uint m = 0u; m < MAP_COUNT; ++m) {
-            vec3 estimate = gatherSppmMap(BUF_ARG pixel, m, u);
+            vec3 estimate = gatherSppmMap(BUF_ARG pixel, m, u, start);
             shown += viewShowsMap(view, m) ? estimate : vec3(0.0f);
         }
         frame += shown;
@@ -178,10 +205,11 @@ PH_FN vec4 accumulatePixel(BUF_PARAM uint pixel) {
     return accumulateMean(BUF(accumulation)[pixel], BUF(frameRadiance)[pixel], n);
 }
 
-// The gather stage for every estimator and global mode (sppm: direct mode only).
-PH_FN vec3 gatherStage(BUF_PARAM uint pixel, uint estimator, uint globalMode) {
+// The gather stage for every estimator and global mode (sppm: direct mode only); `sppmStart`:
+// sppmStarts of the frame.
+PH_FN vec3 gatherStage(BUF_PARAM uint pixel, uint estimator, uint globalMode, bool sppmStart) {
     if (estimator == ESTIMATOR_SPPM && BUF(params).view != VIEW_GRID) {
-        return gatherSppm(BUF_ARG pixel);
+        return gatherSppm(BUF_ARG pixel, sppmStart);
     }
     return gatherPixel(BUF_ARG pixel, estimator, globalMode);
 }

@@ -66,6 +66,7 @@ const Member kMembers[] = {
     PH_MEMBER(FrameParams, accumulated), PH_MEMBER(FrameParams, gatherBudget), PH_MEMBER(FrameParams, alpha),
     PH_MEMBER(FrameParams, sppm), PH_MEMBER(FrameParams, pathFirst), PH_MEMBER(FrameParams, pathCount),
     PH_MEMBER(SppmMapParams, firstRadius), PH_MEMBER(SppmMapParams, firstFootprints), PH_MEMBER(SppmMapParams, batches),
+    PH_MEMBER(SppmMapParams, firstNeighbours),
     PH_MEMBER(Photon, position), PH_MEMBER(Photon, incoming), PH_MEMBER(Photon, power), PH_MEMBER(Photon, id),
     PH_MEMBER(HitPoint, position), PH_MEMBER(HitPoint, material), PH_MEMBER(HitPoint, weight),
     PH_MEMBER(HitPoint, normal), PH_MEMBER(HitPoint, direct), PH_MEMBER(HitPoint, outgoing),

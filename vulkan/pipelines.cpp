@@ -164,16 +164,19 @@ VkPipeline Pipelines::create(Shader shader, const VkSpecializationInfo* speciali
     return createComputePipeline(context_.device, layout, code.words, code.bytes, specialization, flags);
 }
 
-VkPipeline Pipelines::gather(std::uint32_t estimator, std::uint32_t globalMode) {
+VkPipeline Pipelines::gather(std::uint32_t estimator, std::uint32_t globalMode, bool sppmStart) {
     if (estimator >= ESTIMATOR_COUNT || globalMode >= GLOBAL_MODE_COUNT) {
         throw std::logic_error("Vulkan gather: unknown estimator " + std::to_string(estimator) + " or global mode " +
                                std::to_string(globalMode));
     }
-    std::uint32_t variant = estimator * GLOBAL_MODE_COUNT + globalMode;
+    std::uint32_t variant = (estimator * GLOBAL_MODE_COUNT + globalMode) * 2u + (sppmStart ? 1u : 0u);
     if (gatherVariants_[variant] == VK_NULL_HANDLE) {
-        std::uint32_t constants[2] = {estimator, globalMode};
-        VkSpecializationMapEntry entries[2] = {{1, 0, sizeof(std::uint32_t)}, {2, sizeof(std::uint32_t), sizeof(std::uint32_t)}};
-        VkSpecializationInfo specialization{2, entries, sizeof(constants), constants};
+        // A specialization constant of type bool is a VkBool32.
+        std::uint32_t constants[3] = {estimator, globalMode, sppmStart ? VK_TRUE : VK_FALSE};
+        VkSpecializationMapEntry entries[3] = {{1, 0, sizeof(std::uint32_t)},
+                                               {2, sizeof(std::uint32_t), sizeof(std::uint32_t)},
+                                               {3, 2 * sizeof(std::uint32_t), sizeof(VkBool32)}};
+        VkSpecializationInfo specialization{3, entries, sizeof(constants), constants};
         gatherVariants_[variant] = create(kGather, &specialization, 0);
     }
     return gatherVariants_[variant];

@@ -52,8 +52,9 @@ public:
     // Points binding `binding` of the descriptor set at a whole buffer. Only between frames.
     void writeDescriptor(std::uint32_t binding, VkBuffer buffer, VkDeviceSize size);
 
-    // The gather pipeline specialized for an ESTIMATOR_* and a GLOBAL_* mode, built on first use.
-    VkPipeline gather(std::uint32_t estimator, std::uint32_t globalMode);
+    // The gather pipeline specialized for an ESTIMATOR_*, a GLOBAL_* mode and whether the frame
+    // starts sppm (sppmStarts), built on first use.
+    VkPipeline gather(std::uint32_t estimator, std::uint32_t globalMode, bool sppmStart);
 
     VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;  // BINDING_COUNT buffers: params uniform, the rest storage
     VkPipelineLayout layout = VK_NULL_HANDLE;          // the set, then kPushConstantBytes of push constants
@@ -67,7 +68,7 @@ private:
     VkPipeline create(Shader shader, const VkSpecializationInfo* specialization, VkPipelineShaderStageCreateFlags flags);
 
     const Context& context_;
-    static constexpr std::uint32_t kGatherVariants = ESTIMATOR_COUNT * GLOBAL_MODE_COUNT;
+    static constexpr std::uint32_t kGatherVariants = ESTIMATOR_COUNT * GLOBAL_MODE_COUNT * 2;
     VkPipeline gatherVariants_[kGatherVariants] = {};
 };
 

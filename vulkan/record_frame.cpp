@@ -5,6 +5,7 @@
 
 #include "backend.h"
 #include "glsl/dispatch.h"
+#include "shared/progressive.h"
 
 namespace photon::vk {
 
@@ -81,7 +82,9 @@ void VulkanBackend::tracePixels(VkCommandBuffer cmd, const FrameParams& params) 
 
 // With the pipeline of the frame's estimator and mode.
 void VulkanBackend::gather(VkCommandBuffer cmd, const FrameParams& params) {
-    dispatchPixels(cmd, pipelines_.gather(params.estimator, params.globalMode), params);
+    dispatchPixels(cmd, pipelines_.gather(params.estimator, params.globalMode,
+                                          sppmStarts(params.estimator, params.view, params.accumulated)),
+                   params);
     // This frame's radiance is written before accumulate reads it.
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);

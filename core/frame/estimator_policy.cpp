@@ -19,10 +19,12 @@ constexpr float kAutoRadiusFootprints[MAP_COUNT] = {8.0f, 4.0f};
 // every other map's its share of it.
 constexpr float kFallbackShare[MAP_COUNT] = {1.0f, 0.5f};
 
-// sppm starts each pixel at its own footprint times a number of footprints chosen so that a
-// first disc holds about this many photons if they spread over the image (clamped to the range
-// below): few enough to keep detail, enough that the first frames are not all noise.
-constexpr float kSppmFirstPhotons[MAP_COUNT] = {64.0f, 16.0f};
+// sppm starts each pixel at the distance to its k-th nearest photon, k this many (sppm.h): few
+// enough to keep detail, enough that the first frames are not all noise. Its search starts at the
+// footprints that would hold them if photons spread evenly over the image (clamped to the range
+// below), which is also the first frame's cell size.
+constexpr std::uint32_t kSppmFirstPhotons[MAP_COUNT] = {64, 16};
+static_assert(kSppmFirstPhotons[MAP_GLOBAL] <= KNN_MAX && kSppmFirstPhotons[MAP_CAUSTIC] <= KNN_MAX, "a k-nearest heap holds KNN_MAX");
 constexpr float kSppmFirstFootprintsMin[MAP_COUNT] = {1.5f, 1.0f};
 constexpr float kSppmFirstFootprintsMax[MAP_COUNT] = {16.0f, 8.0f};
 
@@ -54,6 +56,7 @@ FrameRadii firstFrameRadii(const Scene& scene, const RenderSettings& settings, c
             r.sppm[m].firstFootprints =
                 float(std::clamp(f, double(kSppmFirstFootprintsMin[m]), double(kSppmFirstFootprintsMax[m])));
             r.sppm[m].firstRadius = given;
+            r.sppm[m].firstNeighbours = kSppmFirstPhotons[m];
             float unseen = m == MAP_GLOBAL ? fallback : kFallbackShare[m] * fallback;
             r.radius[m] = given > 0.0f ? given : footprints.any ? footprints.median * r.sppm[m].firstFootprints : unseen;
         }
