@@ -124,10 +124,9 @@ PH_CONST uint SPPM_COUNT_SLOTS = 4u;
 // SPPM_BATCHES_MAX passes), so that radii shrink with the photons traced, not with the frames.
 PH_CONST uint SPPM_BATCH_PATHS = 16384u;
 PH_CONST uint SPPM_BATCHES_MAX = 256u;
-// A pixel's first radius (sppmFirstRadius): its search for the nearest photons doubles its disc
-// from the even-spread guess SPPM_FIRST_STEPS - 1 times (to 4 times the guess), and the radius is
-// never below SPPM_FIRST_MIN_FOOTPRINTS pixel footprints.
-PH_CONST uint SPPM_FIRST_STEPS = 3u;
+// A pixel's first radius (sppmFirstRadius) is at most SPPM_FIRST_MAX_GUESSES times the
+// even-spread guess and at least SPPM_FIRST_MIN_FOOTPRINTS pixel footprints.
+PH_CONST float SPPM_FIRST_MAX_GUESSES = 4.0f;
 PH_CONST float SPPM_FIRST_MIN_FOOTPRINTS = 0.5f;
 
 // photonBounce() result bits.

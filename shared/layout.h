@@ -148,10 +148,10 @@ struct PH_ALIGN16 GridParams {
 // sppm's start and pass counting for one map (sppm.h).
 struct PH_ALIGN16 SppmMapParams {
     float firstRadius; float firstFootprints; uint batches; uint firstNeighbours;
-    // firstRadius: every pixel's first radius (0: from the photons, sppmFirstRadius); firstFootprints:
-    // the disc, in footprints, that would hold firstNeighbours photons if they spread evenly over
-    // the image, where the search for them starts; batches: the photon passes this frame's photons
-    // of the map count as
+    // firstRadius: every pixel's first radius (0: from the photon density, sppmFirstRadius);
+    // firstFootprints: the disc, in footprints, that would hold firstNeighbours photons if they
+    // spread evenly over the image; batches: the photon passes this frame's photons of the map
+    // count as
 };
 
 struct PH_ALIGN16 FrameParams {

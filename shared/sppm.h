@@ -15,9 +15,9 @@
 // eye pass.
 //
 // The first radius of a pixel comes from the photons around its visible point, as in Hachisuka,
-// Ogaki & Jensen's progressive photon mapping (2008): the distance to its k-th nearest photon of
-// the first frame (sppmFirstRadius), so that a dense caustic starts sharp and a dim corner starts
-// wide enough to see photons at all. It is measured in pixel footprints, so it knows the image,
+// Ogaki & Jensen's progressive photon mapping (2008): the disc that would hold k photons of the
+// first frame at their density there (sppmFirstRadius), so that a dense caustic starts sharp and a dim
+// corner starts wide enough to see photons at all. It is measured in pixel footprints, so it knows the image,
 // not the scene's bounds. Radii then differ from pixel to pixel by orders of magnitude: the grid's cells
 // follow the median radius of the pixels with photons (each frame's GridParams.radius, from the
 // histogram COUNTER_SPPM_HISTOGRAM of the frame before), a wider query visits more cells,
@@ -50,23 +50,37 @@ PH_FN SppmPixel emptySppmPixel() {
     return s;
 }
 
-// The first radius at a visible point: the distance to its firstNeighbours-th nearest photon of
-// this frame, searched in discs that double from firstFootprints footprints (the even-spread
-// guess) SPPM_FIRST_STEPS times, the widest taken by a point with fewer photons; never below
-// SPPM_FIRST_MIN_FOOTPRINTS of a pixel. Outlined: the heap stays out of the gather's loop.
-PH_FN_OUTLINED float sppmFirstRadius(BUF_PARAM uint map, PH_IN(Shading) s, float footprint, float u) {
+// The first radius at a visible point: the disc that would hold firstNeighbours photons of this
+// frame at the density of the photons about it. The density is read off the grid, not the
+// photons: the photons of the 3 × 3 × 3 cells about the point over the area its tangent plane cuts
+// from their cube, (3h)² / max|n_i|. That costs 27 cell lookups and no photon (a radius search
+// over the photons doubled the first frame's gather), measures the density over a few cells (the
+// k-th nearest photon's distance collapses into a caustic's focus, the knn estimate's bias) and
+// keeps the radius within [SPPM_FIRST_MIN_FOOTPRINTS, SPPM_FIRST_MAX_GUESSES · the guess]; a point
+// whose cells are empty keeps the even-spread guess, firstFootprints footprints.
+PH_FN float sppmFirstRadius(BUF_PARAM uint map, PH_IN(Shading) s, float footprint) {
     GridParams grid = BUF(params).grids[map];
-    uint k = clamp(BUF(params).sppm[map].firstNeighbours, 1u, KNN_MAX);
-    float reach = footprint * BUF(params).sppm[map].firstFootprints;
-    KnnHeap h;
-    for (uint step = 0u; step < SPPM_FIRST_STEPS; ++step) {
-        knnSearch(BUF_ARG grid, s, reach, k, u, h);
-        if (h.count == k) {
-            return max(sqrt(h.distance[0]), footprint * SPPM_FIRST_MIN_FOOTPRINTS);
+    float guess = footprint * BUF(params).sppm[map].firstFootprints;
+    ivec3 centre = cellOf(s.position, grid);
+    float photons = 0.0f;
+    for (int dz = -1; dz <= 1; ++dz) {
+        for (int dy = -1; dy <= 1; ++dy) {
+            for (int dx = -1; dx <= 1; ++dx) {
+                uint begin;
+                uint end;
+                cellRange(BUF_ARG grid, cellKey(centre + ivec3(dx, dy, dz), grid), begin, end);
+                photons += float(end - begin);
+            }
         }
-        reach *= step + 1u < SPPM_FIRST_STEPS ? 2.0f : 1.0f;
     }
-    return reach;
+    if (photons == 0.0f) {
+        return guess;
+    }
+    vec3 n = abs(s.geometricNormal);
+    float area = 9.0f * grid.cellSize * grid.cellSize / max(max(n.x, n.y), max(n.z, 1e-3f));
+    float k = float(BUF(params).sppm[map].firstNeighbours);
+    float r = sqrt(k * area / (PI * photons));
+    return clamp(r, footprint * SPPM_FIRST_MIN_FOOTPRINTS, guess * SPPM_FIRST_MAX_GUESSES);
 }
 
 // One map's statistics of one pixel.
@@ -89,7 +103,7 @@ PH_FN vec3 sppmUpdate(BUF_PARAM uint map, PH_IN(Shading) s, vec3 weight, float f
         if (first > 0.0f) {
             e.radius = first;
         } else if (start) {
-            e.radius = sppmFirstRadius(BUF_ARG map, s, footprint, u);
+            e.radius = sppmFirstRadius(BUF_ARG map, s, footprint);
         } else {
             e.radius = footprint * BUF(params).sppm[map].firstFootprints;
         }

@@ -66,16 +66,19 @@ TEST(Sppm, ErrorFallsWithFramesAndStaysBelowProgressive) {
     EXPECT_LT(sppm[1], sppm[0]);
     EXPECT_LT(sppm[2], 0.75 * sppm[0]);
     EXPECT_LT(sppm[2], progressive[2]);
+    // First radii from the photon density (measured 0.148, 0.112, 0.076); from the footprints
+    // alone they were 0.198, 0.174, 0.148.
+    EXPECT_LT(sppm[2], 0.1);
 }
 
 TEST(Sppm, CausticPeakConvergesToTheReference) {
     Scene scene = loadSceneFile(test::scenesDir() + "/caustic.json");
     Image reference = readImage(test::dataPath("caustic-64x48.pfm"));
     Window window = brightestWindow(reference, 2);
-    // The radii shrink with the photons traced (R² ~ N^-(1-α)): the focus sharpens slowly. Against
-    // the reference (1G photons), 51M photons in 2048 frames measured a peak of 0.876 and an
-    // energy of 1.015 (16 frames: 0.740 and 1.076). The "within 5%" needs about the
-    // reference's own photon count: docs/performance.md has the measurements on the GPU.
+    // The first radii come from the photon density, so a dense focus starts sharp; then the radii
+    // shrink with the photons traced (R² ~ N^-(1-α)). Against the reference (1G photons) 16 frames
+    // of 25k photons measured a peak of 0.919 and an energy of 1.028, 2048 frames 1.050 and 1.025
+    // (from footprint radii they were 0.740 and 1.076 after 16 frames, 0.876 and 1.015 after 2048).
     RenderSettings settings = referenceSettings(scene, Estimator::Sppm, 25000);
     std::vector<std::uint32_t> checkpoints = {16, 2048};
     std::vector<Image> images = renderCheckpoints(scene, settings, checkpoints);
@@ -85,7 +88,8 @@ TEST(Sppm, CausticPeakConvergesToTheReference) {
         std::printf("caustic 64x48, %u frames: peak %.3f, energy %.3f of the reference's, rmse %.4f\n", checkpoints[i],
                     errors[i].peakRatio, errors[i].energyRatio, errors[i].whole);
     }
-    EXPECT_NEAR(errors.back().peakRatio, 1.0, 0.15);
+    EXPECT_NEAR(errors.front().peakRatio, 1.0, 0.15) << "the first radii resolve the focus";
+    EXPECT_NEAR(errors.back().peakRatio, 1.0, 0.1);
     EXPECT_GT(errors.back().peakRatio, errors.front().peakRatio + 0.08) << "the focus sharpens as the radii shrink";
     EXPECT_NEAR(errors.back().energyRatio, 1.0, 0.03);
     EXPECT_LT(errors.back().whole, 0.5 * errors.front().whole);

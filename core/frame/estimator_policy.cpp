@@ -19,12 +19,12 @@ constexpr float kAutoRadiusFootprints[MAP_COUNT] = {8.0f, 4.0f};
 // every other map's its share of it.
 constexpr float kFallbackShare[MAP_COUNT] = {1.0f, 0.5f};
 
-// sppm starts each pixel at the distance to its k-th nearest photon, k this many (sppm.h): few
-// enough to keep detail, enough that the first frames are not all noise. Its search starts at the
+// sppm starts each pixel at the disc that would hold this many photons at the density about it
+// (sppm.h): few enough to keep detail, enough that the first frames are not all noise (16 caustic
+// photons made the Cornell box's first frames noisier than radii from the footprints). The
 // footprints that would hold them if photons spread evenly over the image (clamped to the range
-// below), which is also the first frame's cell size.
-constexpr std::uint32_t kSppmFirstPhotons[MAP_COUNT] = {64, 16};
-static_assert(kSppmFirstPhotons[MAP_GLOBAL] <= KNN_MAX && kSppmFirstPhotons[MAP_CAUSTIC] <= KNN_MAX, "a k-nearest heap holds KNN_MAX");
+// below) are the first frame's cell size and the radius of a pixel with no photons about it.
+constexpr std::uint32_t kSppmFirstPhotons[MAP_COUNT] = {64, 64};
 constexpr float kSppmFirstFootprintsMin[MAP_COUNT] = {1.5f, 1.0f};
 constexpr float kSppmFirstFootprintsMax[MAP_COUNT] = {16.0f, 8.0f};
 

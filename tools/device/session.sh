@@ -157,6 +157,11 @@ for step in "$@"; do
           --estimators sppm,progressive,radius,knn,cell --set width=256 --set height=192 --set pixel_center=true \
           --set photons=1000000 --frames ${CONVERGE_FRAMES:-1024} --json "$out/converge-$scene.json" | tee "$out/converge-$scene.log"
       done ;;
+    reference-cornell)
+      # Issue 20: the default Cornell box (640x480, jittered pixels) converged, for the CPU's first seconds.
+      $bin/photon-render scenes/cornell.json --backend cuda --estimator sppm --frames ${REF_FRAMES:-4096} \
+        --photons 2000000 --seed 99 -o "$out/ref-cornell-640x480.pfm" -q
+      summary+=("reference cornell 640x480: exit $?") ;;
     pictures)
       for scene in bunny.json textured.glb smallpt.json; do
         $bin/photon-render scenes/$scene --backend cuda --width 1280 --height 960 --photons 2000000 --time 3 \
