@@ -61,17 +61,16 @@ PH_FN SppmPixel emptySppmPixel() {
 PH_FN float sppmFirstRadius(BUF_PARAM uint map, PH_IN(Shading) s, float footprint) {
     GridParams grid = BUF(params).grids[map];
     float guess = footprint * BUF(params).sppm[map].firstFootprints;
-    ivec3 centre = cellOf(s.position, grid);
+    // The cells within a cell's edge of the point: 3 a side, fewer at a bounded grid's border.
+    vec3 edge = vec3(grid.cellSize);
+    CellQuery q = beginCellQuery(s.position, edge, grid.cellSize, grid);
     float photons = 0.0f;
-    for (int dz = -1; dz <= 1; ++dz) {
-        for (int dy = -1; dy <= 1; ++dy) {
-            for (int dx = -1; dx <= 1; ++dx) {
-                uint begin;
-                uint end;
-                cellRange(BUF_ARG grid, cellKey(centre + ivec3(dx, dy, dz), grid), begin, end);
-                photons += float(end - begin);
-            }
-        }
+    uint key;
+    while (nextCell(q, grid, key)) {
+        uint begin;
+        uint end;
+        cellRange(BUF_ARG grid, key, begin, end);
+        photons += float(end - begin);
     }
     if (photons == 0.0f) {
         return guess;
