@@ -130,6 +130,7 @@ int run(int argc, char** argv) {
                          std::to_string(base.height));
     }
     std::unique_ptr<Backend> backend = createBackend(backendName, options);
+    choosePhotons(base, backend->runsOnCpu());
     backend->setScene(scene);
     nlohmann::json out;
     out["scene"] = scene.name;

@@ -147,6 +147,7 @@ int run(int argc, char** argv) {
                      static_cast<unsigned long long>(scene.droppedTriangles));
     }
     std::unique_ptr<Backend> backend = createBackend(backendName, backendOptions);
+    choosePhotons(settings, backend->runsOnCpu());
     backend->setScene(std::move(scene));
     backend->setSettings(settings);
     auto start = std::chrono::steady_clock::now();

@@ -52,6 +52,7 @@ public:
 
     std::string deviceName() const override { return "CPU (" + std::to_string(workerThreads()) + " threads)"; }
     bool buffersInHostMemory() const override { return true; }
+    bool runsOnCpu() const override { return true; }
 
     MemoryLimits memoryLimits() override {
         MemoryLimits limits;

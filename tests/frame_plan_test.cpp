@@ -1,6 +1,6 @@
 // What core decides for every backend about a frame's stages and buffers: the stage list's names
-// (the report keys documents and scripts read), the order a frame runs them in, and the buffer
-// helpers the backends allocate and upload through.
+// (the report keys documents and scripts read), the order a frame runs them in, the buffer
+// helpers the backends allocate and upload through, and the photons a frame by default.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -12,6 +12,7 @@
 #include "core/frame/buffers.h"
 #include "core/frame/median.h"
 #include "core/loaders/scene_loader.h"
+#include "core/settings/setting_specs.h"
 #include "cpu/cpu_backend.h"
 
 namespace photon {
@@ -95,6 +96,42 @@ TEST(BufferHelpers, SceneBuffersArePaddedToThePlan) {
         sceneRows += info.size == BUFFER_PER_SCENE ? 1u : 0u;
     }
     EXPECT_EQ(seen, sceneRows);
+}
+
+// Photons a frame follow the processor unless the file or the command line gives them: a GPU gets
+// kGpuDefaultPhotons, the host's cores one per kCpuPixelsPerPhoton pixels within their bounds.
+TEST(DefaultPhotons, FollowTheProcessorUnlessGiven) {
+    Scene scene = defaultScene();
+    EXPECT_FALSE(isGiven(scene.render, "photons")) << "the shipped Cornell box leaves the count to the backend";
+    RenderSettings s = scene.render;
+    s.width = 640;
+    s.height = 480;
+    RenderSettings gpu = s;
+    choosePhotons(gpu, false);
+    EXPECT_EQ(gpu.photons, kGpuDefaultPhotons);
+    RenderSettings cpu = s;
+    choosePhotons(cpu, true);
+    EXPECT_EQ(cpu.photons, 102000u);
+    cpu.width = 64;
+    cpu.height = 48;
+    choosePhotons(cpu, true);
+    EXPECT_EQ(cpu.photons, kCpuPhotonsMin);
+    cpu.width = 3840;
+    cpu.height = 2160;
+    choosePhotons(cpu, true);
+    EXPECT_EQ(cpu.photons, kGpuDefaultPhotons) << "never more than a GPU's";
+    RenderSettings given = s;
+    setSetting(given, *findSetting("photons"), "300000", "--photons");
+    choosePhotons(given, true);
+    EXPECT_EQ(given.photons, 300000u);
+    Scene file = loadSceneJson(R"({"camera": {"position": [0, 0, 5], "look_at": [0, 0, 0], "fov": 40},
+        "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "white"}],
+        "materials": {"white": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5]}},
+        "lights": [{"type": "point", "position": [0, 3, 0], "power": [1, 1, 1]}],
+        "render": {"photons": 70000}})", "inline.json", "", defaultFileReader());
+    RenderSettings fromFile = file.render;
+    choosePhotons(fromFile, false);
+    EXPECT_EQ(fromFile.photons, 70000u);
 }
 
 }  // namespace

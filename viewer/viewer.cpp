@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/settings/setting_specs.h"
 #include "core/system/error.h"
 #include "core/system/output_file.h"
 #include "hud.h"
@@ -50,6 +51,7 @@ Viewer::Viewer(const ViewerOptions& options)
     }
     context_ = std::make_shared<vk::Context>(contextOptions);
     backend_ = std::make_unique<vk::VulkanBackend>(context_);
+    choosePhotons(state_.settings, backend_->runsOnCpu());
 
     // The display pass leaves a swapchain image ready to present, an offscreen one ready to copy.
     if (window_) {

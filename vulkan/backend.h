@@ -31,6 +31,7 @@ public:
 
     std::string name() const override { return "vulkan"; }
     std::string deviceName() const override { return context_->properties.deviceName; }
+    bool runsOnCpu() const override { return context_->properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU; }
 
     MemoryLimits memoryLimits() override;
 

@@ -153,6 +153,10 @@ public:
     // counts the image's host copies (adjustPlan), else they are checked against host memory apart.
     virtual bool buffersInHostMemory() const { return false; }
 
+    // Whether its stages run on the host's cores (the CPU backend, Vulkan on a software device
+    // such as lavapipe): the default photon count follows it (choosePhotons).
+    virtual bool runsOnCpu() const { return false; }
+
 protected:
     // Entries a backend adds for its own scheduling (Vulkan: the levels of its scan in cellStart).
     virtual void adjustPlan(BufferPlan& plan, const PhotonBudget& budget) { (void)plan, (void)budget; }

@@ -1,5 +1,6 @@
 #include "core/settings/setting_specs.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -254,6 +255,19 @@ void chooseDefaults(RenderSettings& settings, bool timed) {
     if (!isGiven(settings, "estimator") && (timed || settings.frames > 1)) {
         settings.estimator = Estimator::Sppm;
     }
+}
+
+void choosePhotons(RenderSettings& settings, bool onCpu) {
+    if (isGiven(settings, "photons")) {
+        return;
+    }
+    if (!onCpu) {
+        settings.photons = kGpuDefaultPhotons;
+        return;
+    }
+    std::uint64_t pixels = std::uint64_t(settings.width) * settings.height;
+    std::uint64_t photons = (pixels / kCpuPixelsPerPhoton + 500) / 1000 * 1000;
+    settings.photons = std::uint32_t(std::clamp<std::uint64_t>(photons, kCpuPhotonsMin, kGpuDefaultPhotons));
 }
 
 void validateForScene(const RenderSettings& settings, const Scene& scene, const FrameRadii& radii) {

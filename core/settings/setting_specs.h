@@ -72,6 +72,17 @@ bool isGiven(const RenderSettings& settings, const std::string& key);
 // (or of a time), unless an estimator was given.
 void chooseDefaults(RenderSettings& settings, bool timed);
 
+// Photon paths a frame when neither the file nor the command line gives them, for the backend that
+// renders: on a GPU kGpuDefaultPhotons; on the host's cores, where a frame's eye pass and gather
+// cost as much as tracing a third as many photons as there are pixels, one photon per
+// kCpuPixelsPerPhoton pixels, so that a time-limited render gets its frames (the 2-core machine's
+// 2-second Cornell box at 640x480: 0.13 relative RMSE at 100k photons a frame, 0.17-0.18 at 500k;
+// docs/performance.md, issue 20).
+inline constexpr std::uint32_t kGpuDefaultPhotons = 500000;
+inline constexpr std::uint32_t kCpuPixelsPerPhoton = 3;
+inline constexpr std::uint32_t kCpuPhotonsMin = 20000;
+void choosePhotons(RenderSettings& settings, bool onCpu);
+
 // The default length of photon-render's render without --frames, --time or frames in the scene.
 inline constexpr double kDefaultRenderSeconds = 2.0;
 
