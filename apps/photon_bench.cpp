@@ -24,6 +24,7 @@
 
 #include "apps/backends.h"
 #include "apps/image_writer_bench.h"
+#include "apps/photon_use_bench.h"
 #include "apps/render_options.h"
 #include "apps/scene_stats.h"
 #include "core/frame/buffers.h"
@@ -351,6 +352,7 @@ int run(int argc, char** argv) {
     bool primaryRays = false;
     bool imageWriters = false;
     std::uint32_t writes = 11;
+    std::uint32_t photonUse = 0;
     std::string imageDir = ".";
     std::uint32_t bvhBuilds = 0;
     std::string threads = "0";
@@ -377,6 +379,9 @@ int run(int argc, char** argv) {
                                                   "instead (on the first backend; default resolutions 1920x1080,3840x2160)");
     app.add_option("--writes", writes, "--image-writers: timed writes of each file")->check(CLI::Range(1u, 1000u));
     app.add_option("--image-dir", imageDir, "--image-writers: the folder to write them in");
+    app.add_option("--photon-use", photonUse, "Render this many frames of each case on the first backend and print the "
+                                              "share of the last frame's stored photons that some pixel gathers (no times)")
+        ->check(CLI::Range(1u, 100000u));
     app.add_option("--device", options.device, "GPU to use");
     app.add_option("--json", jsonPath, "Write the rows as JSON");
     app.add_option("--csv", csvPath, "Write the rows as CSV");
@@ -428,6 +433,27 @@ int run(int argc, char** argv) {
         std::vector<std::string> sceneNames = splitList(scenes);
         benchImageWriters(*backend, sceneNamed(sceneNames.empty() ? "cornell" : sceneNames[0], scenesDir),
                           resolutionList, writes, imageDir);
+        return 0;
+    }
+
+    if (photonUse > 0) {
+        std::vector<std::string> names = splitList(backends);
+        std::unique_ptr<Backend> backend = createBackend(names.empty() ? "cpu" : names[0], options);
+        std::vector<std::pair<Scene, PhotonUseCase>> cases;
+        for (const std::string& name : splitList(scenes)) {
+            Scene scene = sceneNamed(name, scenesDir);
+            for (auto [width, height] : resolutionList) {
+                for (std::uint32_t n : photonList) {
+                    RenderSettings s = scene.render;
+                    s.estimator = est;
+                    s.width = width;
+                    s.height = height;
+                    s.photons = n;
+                    cases.emplace_back(scene, PhotonUseCase{name, s});
+                }
+            }
+        }
+        benchPhotonUse(*backend, cases, photonUse);
         return 0;
     }
 

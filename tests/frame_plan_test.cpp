@@ -1,8 +1,10 @@
 // What core decides for every backend about a frame's stages and buffers: the stage list's names
 // (the report keys documents and scripts read), the order a frame runs them in, the buffer
-// helpers the backends allocate and upload through, and the photons a frame by default.
+// helpers the backends allocate and upload through, the photons a frame by default, and the share
+// of them that pixels gather.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <cstring>
 #include <map>
 #include <string>
@@ -11,6 +13,7 @@
 #include "core/frame/backend.h"
 #include "core/frame/buffers.h"
 #include "core/frame/median.h"
+#include "core/frame/photon_use.h"
 #include "core/loaders/scene_loader.h"
 #include "core/settings/setting_specs.h"
 #include "cpu/cpu_backend.h"
@@ -132,6 +135,41 @@ TEST(DefaultPhotons, FollowTheProcessorUnlessGiven) {
     RenderSettings fromFile = file.render;
     choosePhotons(fromFile, false);
     EXPECT_EQ(fromFile.photons, 70000u);
+}
+
+// In the closed box nearly every global photon lands where a pixel sees; through a narrow lens that
+// sees a patch of the back wall, few do. The measure counts each photon once, whatever the discs.
+TEST(PhotonUse, FollowsWhatTheCameraSees) {
+    double share[2];
+    for (int narrow = 0; narrow < 2; ++narrow) {
+        Scene scene = defaultScene();
+        if (narrow == 1) {
+            scene.camera.fovY = 4.0f;
+        }
+        RenderSettings s = scene.render;
+        s.width = 64;
+        s.height = 48;
+        s.photons = 40000;
+        s.estimator = Estimator::Sppm;
+        std::unique_ptr<Backend> backend = createCpuBackend();
+        backend->setScene(scene);
+        backend->setSettings(s);
+        for (int f = 0; f < 2; ++f) {
+            backend->renderFrame();
+        }
+        PhotonUse use = measurePhotonUse(*backend);
+        ASSERT_GT(use.stored[MAP_GLOBAL], 1000u);
+        EXPECT_LE(use.gathered[MAP_GLOBAL], use.stored[MAP_GLOBAL]);
+        if (narrow == 1) {
+            EXPECT_EQ(use.discs[MAP_GLOBAL], 64u * 48u) << "every pixel sees the back wall";
+        } else {
+            EXPECT_GT(use.discs[MAP_GLOBAL], 64u * 48u / 2u) << "most pixels see the box";
+        }
+        share[narrow] = double(use.gathered[MAP_GLOBAL]) / double(use.stored[MAP_GLOBAL]);
+    }
+    std::printf("global photons gathered: %.3f of the box, %.3f through a 4-degree lens\n", share[0], share[1]);
+    EXPECT_GT(share[0], 0.8);
+    EXPECT_LT(share[1], 0.1);
 }
 
 }  // namespace

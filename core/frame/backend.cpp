@@ -210,6 +210,14 @@ std::vector<HitPoint> Backend::readHitPoints() {
     return hitPoints;
 }
 
+std::vector<SppmPixel> Backend::readSppmPixels() {
+    std::vector<SppmPixel> pixels(std::size_t(allocatedWidth_) * allocatedHeight_);
+    if (!pixels.empty()) {
+        readBuffer(BINDING_SPPM_PIXELS, 0, pixels.size() * sizeof(SppmPixel), pixels.data());
+    }
+    return pixels;
+}
+
 PhotonMaps Backend::readPhotonMaps() {
     PhotonMaps maps;
     for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {

@@ -144,6 +144,7 @@ public:
     // Stage outputs of the last frame, for tests and tools.
     PhotonMaps readPhotonMaps();
     std::vector<HitPoint> readHitPoints();
+    std::vector<SppmPixel> readSppmPixels();
     Image readFrame();
 
     // What this backend may allocate now (what it holds already counts as free).
