@@ -258,58 +258,18 @@ PH_FN vec3 estimateCell(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, floa
     return sum * float(stride) * estimateScale(s) / (grid.cellSize * grid.cellSize);
 }
 
-// Jensen's k nearest: a max-heap on the squared distance of the k closest photons found so far.
-struct KnnHeap {
-    float distance[KNN_MAX];  // squared; distance[0] is the farthest
-    uint photon[KNN_MAX];
-    uint count;
-};
-
-// Adds photon i at squared distance d2 to a heap of at most k (if it is full, d2 is below its root's).
-PH_FN void knnInsert(PH_INOUT(KnnHeap) h, uint k, float d2, uint i) {
-    uint slot;
-    if (h.count < k) {
-        // Sift up from the new leaf.
-        slot = h.count;
-        h.count += 1u;
-        while (slot > 0u && h.distance[(slot - 1u) / 2u] < d2) {
-            h.distance[slot] = h.distance[(slot - 1u) / 2u];
-            h.photon[slot] = h.photon[(slot - 1u) / 2u];
-            slot = (slot - 1u) / 2u;
-        }
-    } else {
-        // Replace the farthest (the root) and sift down.
-        slot = 0u;
-        while (true) {
-            uint child = 2u * slot + 1u;
-            if (child >= h.count) {
-                break;
-            }
-            if (child + 1u < h.count && h.distance[child + 1u] > h.distance[child]) {
-                child += 1u;
-            }
-            if (h.distance[child] <= d2) {
-                break;
-            }
-            h.distance[slot] = h.distance[child];
-            h.photon[slot] = h.photon[child];
-            slot = child;
-        }
-    }
-    h.distance[slot] = d2;
-    h.photon[slot] = i;
-}
-
-// The k nearest photons within maxRadius of s (in its disc, reflecting there), over the photons of
-// the cells the disc crosses. A cell denser than the gather budget is subsampled as the radius
-// query does (every stride-th photon, each weighted by its cell's stride): the k nearest of the
-// sample then stand for about k·stride photons within their distance, and the sum stays unbiased
-// for that disc. Without it a maximum radius as wide as the scene (or one so small that every
-// photon shares the grid's clamped border cells) made every query visit every photon: a 320×240
-// frame took 60 times as long.
-PH_FN void knnSearch(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float maxRadius, uint k, float u,
-                     PH_INOUT(KnnHeap) h) {
-    h.count = 0u;
+// Jensen's k-nearest-neighbour estimate with a max-heap of the k closest photons so far, over the
+// photons of the cells within the maximum radius. A cell denser than the gather budget is
+// subsampled as the radius query does (every stride-th photon, each weighted by its cell's
+// stride): the k nearest of the sample then stand for about k·stride photons within their
+// distance, and the sum stays unbiased for that disc. Without it a maximum radius as wide as the
+// scene (or one so small that every photon shares the grid's clamped border cells) made every
+// query visit every photon: a 320×240 frame took 60 times as long.
+PH_FN vec3 estimateKnn(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float maxRadius, uint k, uint kernel,
+                       float u) {
+    float heapDistance[KNN_MAX];
+    uint heapPhoton[KNN_MAX];
+    uint count = 0u;
     float maxR2 = maxRadius * maxRadius;
     float thickness = DISC_THICKNESS * maxRadius;
     CellQuery q = beginCellQuery(s.position, discExtent(s.geometricNormal, maxRadius, thickness), maxRadius, grid);
@@ -324,36 +284,58 @@ PH_FN void knnSearch(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float m
             Photon p = loadMapPhoton(BUF_ARG i);
             vec3 d = p.position - s.position;
             float d2 = dot(d, d);
-            if (d2 >= maxR2 || (h.count == k && d2 >= h.distance[0]) || abs(dot(d, s.geometricNormal)) > thickness) {
+            if (d2 >= maxR2 || (count == k && d2 >= heapDistance[0]) || abs(dot(d, s.geometricNormal)) > thickness) {
                 continue;
             }
-            if (!inVisitedCell(q, grid, p.position) || isBlack(photonReflectance(BUF_ARG s, p.incoming))) {
+            if (isBlack(photonReflectance(BUF_ARG s, p.incoming))) {
                 continue;
             }
-            knnInsert(h, k, d2, i);
+            uint slot;
+            if (count < k) {
+                // Sift up from the new leaf.
+                slot = count;
+                count += 1u;
+                while (slot > 0u && heapDistance[(slot - 1u) / 2u] < d2) {
+                    heapDistance[slot] = heapDistance[(slot - 1u) / 2u];
+                    heapPhoton[slot] = heapPhoton[(slot - 1u) / 2u];
+                    slot = (slot - 1u) / 2u;
+                }
+            } else {
+                // Replace the farthest (the root) and sift down.
+                slot = 0u;
+                while (true) {
+                    uint child = 2u * slot + 1u;
+                    if (child >= count) {
+                        break;
+                    }
+                    if (child + 1u < count && heapDistance[child + 1u] > heapDistance[child]) {
+                        child += 1u;
+                    }
+                    if (heapDistance[child] <= d2) {
+                        break;
+                    }
+                    heapDistance[slot] = heapDistance[child];
+                    heapPhoton[slot] = heapPhoton[child];
+                    slot = child;
+                }
+            }
+            heapDistance[slot] = d2;
+            heapPhoton[slot] = i;
         }
     }
-}
-
-// Jensen's k-nearest-neighbour estimate: the k nearest photons over the disc through the k-th.
-PH_FN vec3 estimateKnn(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float maxRadius, uint k, uint kernel,
-                       float u) {
-    KnnHeap h;
-    knnSearch(BUF_ARG grid, s, maxRadius, k, u, h);
-    if (h.count == 0u) {
+    if (count == 0u) {
         return vec3(0.0f);
     }
-    float r2 = h.count == k ? h.distance[0] : maxRadius * maxRadius;
-    uint budget = BUF(params).gatherBudget;
+    float r2 = count == k ? heapDistance[0] : maxR2;
     vec3 sum = vec3(0.0f);
-    for (uint j = 0u; j < h.count; ++j) {
-        Photon p = loadMapPhoton(BUF_ARG h.photon[j]);
+    for (uint j = 0u; j < count; ++j) {
+        Photon p = loadMapPhoton(BUF_ARG heapPhoton[j]);
         // The stride of the photon's cell, as the search above found it (its cell's bucket).
         uint begin;
         uint end;
         cellRange(BUF_ARG grid, photonCellKey(p.position, grid), begin, end);
         float weight = float(subsampleStride(end - begin, budget));
-        sum += photonReflectance(BUF_ARG s, p.incoming) * p.power * (weight * kernelProfile(kernel, h.distance[j] / r2));
+        sum += photonReflectance(BUF_ARG s, p.incoming) * p.power * (weight * kernelProfile(kernel, heapDistance[j] / r2));
     }
     return sum * estimateScale(s) * (kernelNorm(kernel) / (PI * r2));
 }

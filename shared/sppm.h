@@ -16,13 +16,13 @@
 //
 // The first radius of a pixel comes from the photons around its visible point, as in Hachisuka,
 // Ogaki & Jensen's progressive photon mapping (2008): the disc that would hold k photons of the
-// first frame at their density there (sppmFirstRadius), so that a dense caustic starts sharp and a dim
-// corner starts wide enough to see photons at all. It is measured in pixel footprints, so it knows the image,
-// not the scene's bounds. Radii then differ from pixel to pixel by orders of magnitude: the grid's cells
-// follow the median radius of the pixels with photons (each frame's GridParams.radius, from the
-// histogram COUNTER_SPPM_HISTOGRAM of the frame before), a wider query visits more cells,
-// filtered (estimate.h), so that its cost stays that of its disc, and a pixel without photons is
-// held to the median.
+// first frame at their density there (sppmFirstRadius), so that a dense caustic starts sharp and a
+// dim corner starts wide enough to see photons at all. It is bounded in pixel footprints, so it
+// knows the image, not the scene's bounds. Radii then differ from pixel to pixel by orders of
+// magnitude: the grid's cells follow the median radius of the pixels with photons (each frame's
+// GridParams.radius, from the histogram COUNTER_SPPM_HISTOGRAM of the frame before), a wider query
+// visits more cells, filtered (estimate.h), so that its cost stays that of its disc, and a pixel
+// without photons is held to the median.
 #ifndef PHOTON_SHARED_SPPM_H
 #define PHOTON_SHARED_SPPM_H
 

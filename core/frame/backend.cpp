@@ -202,21 +202,18 @@ Image Backend::readImage(std::uint32_t binding) {
     return image;
 }
 
-std::vector<HitPoint> Backend::readHitPoints() {
-    std::vector<HitPoint> hitPoints(std::size_t(allocatedWidth_) * allocatedHeight_);
-    if (!hitPoints.empty()) {
-        readBuffer(BINDING_HIT_POINTS, 0, hitPoints.size() * sizeof(HitPoint), hitPoints.data());
+template <typename T>
+std::vector<T> Backend::readPerPixel(std::uint32_t binding) {
+    std::vector<T> elements(std::size_t(allocatedWidth_) * allocatedHeight_);
+    if (!elements.empty()) {
+        readBuffer(binding, 0, elements.size() * sizeof(T), elements.data());
     }
-    return hitPoints;
+    return elements;
 }
 
-std::vector<SppmPixel> Backend::readSppmPixels() {
-    std::vector<SppmPixel> pixels(std::size_t(allocatedWidth_) * allocatedHeight_);
-    if (!pixels.empty()) {
-        readBuffer(BINDING_SPPM_PIXELS, 0, pixels.size() * sizeof(SppmPixel), pixels.data());
-    }
-    return pixels;
-}
+std::vector<HitPoint> Backend::readHitPoints() { return readPerPixel<HitPoint>(BINDING_HIT_POINTS); }
+
+std::vector<SppmPixel> Backend::readSppmPixels() { return readPerPixel<SppmPixel>(BINDING_SPPM_PIXELS); }
 
 PhotonMaps Backend::readPhotonMaps() {
     PhotonMaps maps;

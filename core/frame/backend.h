@@ -177,6 +177,9 @@ protected:
 private:
     FrameResult runFrame(const FrameParams& params);
     Image readImage(std::uint32_t binding);
+    // A per-pixel buffer's elements, as the last frame left them.
+    template <typename T>
+    std::vector<T> readPerPixel(std::uint32_t binding);
     // The footprints and first radii of the camera, if it, the scene or the settings changed.
     void measureRadii();
     // Grows a photon map that came within 80% of its capacity (GPU backends drop photons beyond

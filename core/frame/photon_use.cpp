@@ -33,7 +33,7 @@ bool holds(const Disc& d, const Photon& p) {
 }
 
 // The photons of `photons` that some disc holds. Each disc is listed in the cells its bounding
-// box overlaps, cells of twice the median radius (or a quarter of the widest, so that no disc
+// box (discExtent: a thin slab for a wall) overlaps, cells of twice the median radius (or a quarter of the widest, so that no disc
 // spans more than 9 cells an axis); a photon then looks in its own cell only.
 std::uint64_t countGathered(const std::vector<Photon>& photons, const std::vector<Disc>& discs) {
     if (photons.empty() || discs.empty()) {
@@ -48,7 +48,7 @@ std::uint64_t countGathered(const std::vector<Photon>& photons, const std::vecto
     float cell = std::max(2.0f * float(median(radii)), 0.25f * widest);
     std::vector<std::pair<std::int64_t, std::uint32_t>> entries;
     for (std::uint32_t i = 0; i < discs.size(); ++i) {
-        glm::vec3 reach(discs[i].radius);
+        glm::vec3 reach = discExtent(discs[i].normal, discs[i].radius, DISC_THICKNESS * discs[i].radius);
         glm::ivec3 lo = cellAt(discs[i].centre - reach, cell);
         glm::ivec3 hi = cellAt(discs[i].centre + reach, cell);
         for (int z = lo.z; z <= hi.z; ++z) {
@@ -106,6 +106,7 @@ PhotonUse measurePhotonUse(Backend& backend) {
         const GridParams& grid = params.grids[m];
         use.stored[m] = maps.photons[m].size();
         if (params.estimator == ESTIMATOR_CELL) {
+            use.discs[m] = std::count_if(hitPoints.begin(), hitPoints.end(), [](const HitPoint& hp) { return hp.material != NONE; });
             use.gathered[m] = countInCells(maps.photons[m], hitPoints, grid);
             continue;
         }

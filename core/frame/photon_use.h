@@ -12,7 +12,7 @@ namespace photon {
 struct PhotonUse {
     std::uint64_t stored[MAP_COUNT] = {};    // the last frame's photons of each map
     std::uint64_t gathered[MAP_COUNT] = {};  // of them, those within some pixel's disc
-    std::uint64_t discs[MAP_COUNT] = {};     // the pixels whose visible point gathers from the map (not cell)
+    std::uint64_t discs[MAP_COUNT] = {};     // the pixels whose visible point gathers from the map
 };
 
 // After a frame on `backend`: for each map, its stored photons that lie within a pixel's disc of
