@@ -23,6 +23,7 @@
 #include "../shared/progressive.h"
 #include "../shared/rng.h"
 #include "../shared/sampling.h"
+#include "../shared/spectral.h"
 #include "../shared/sppm.h"
 #include "../shared/stages.h"
 #include "../shared/surface.h"

@@ -139,11 +139,17 @@ PH_CONST uint PATH_SPECULAR_ONLY = 2u;  // every bounce so far was a mirror or g
 PH_CONST uint PATH_CAUSTIC_PASS = 4u;   // emitted towards a specular object for the caustic map
 PH_CONST uint PATH_FROM_TARGET = 8u;    // its first surface was a caustic target (see photon_trace.h)
 PH_CONST uint PATH_FROM_ENVIRONMENT = 16u;  // emitted by the environment (counted: COUNTER_ENVIRONMENT_*)
+PH_CONST uint PATH_CHANNEL_SHIFT = 5u;      // bits 5-6: the path's CHANNEL_* (spectral.h)
+
+// Which of the frame's three wavelengths a path carries (spectral.h): one of them, 0, 1 or 2,
+// after a dispersive surface, else all.
+PH_CONST uint CHANNEL_ALL = 3u;
 
 // FrameParams::flags bits.
 PH_CONST uint FLAG_PIXEL_CENTER = 1u;    // one ray through each pixel centre: no jitter, no lens
 PH_CONST uint FLAG_SPLIT_CAUSTICS = 2u;  // caustic paths come from the caustic pass only
 PH_CONST uint FLAG_DETERMINISTIC = 4u;   // the photon maps in canonical order (photon_map.h)
+PH_CONST uint FLAG_SPECTRAL = 8u;        // paths carry the frame's three wavelengths (spectral.h)
 
 // Independent random streams, so that no two stages draw the same numbers.
 PH_CONST uint STREAM_PHOTON = 0x1b873593u;

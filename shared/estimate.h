@@ -14,6 +14,7 @@
 #include "bindings.h"
 #include "bsdf.h"
 #include "grid.h"
+#include "spectral.h"
 
 PH_NAMESPACE_BEGIN
 
@@ -50,7 +51,7 @@ PH_FN Shading makeShading(vec3 position, vec3 normal, vec3 geometricNormal, vec3
 
 // The part of the point's material that photons and gather rays see (storedPart), textured.
 PH_FN Material shadingMaterial(BUF_PARAM PH_IN(Shading) s) {
-    Material m = storedPart(BUF(materials)[s.material]);
+    Material m = spectralMaterial(BUF_ARG storedPart(BUF(materials)[s.material]));
     m.albedo = s.albedo;
     m.metallic = s.metallic;
     m.roughness = s.roughness;

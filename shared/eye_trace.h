@@ -72,7 +72,7 @@ PH_FN vec3 environmentDirectLight(BUF_PARAM PH_IN(Light) light, vec3 x, vec3 ns,
     if (cosine > 0.0f && dot(ng, ls.direction) > 0.0f && !isBlack(ls.radiance) &&
         shadowRayReaches(BUF_ARG x, ng, ls.direction, ls.point)) {
         float weight = powerHeuristic(ls.pdf, pdfBsdf(m, wo, ls.direction, ns));
-        sum += evalBsdf(m, wo, ls.direction, ns) * ls.radiance * (cosine * weight);
+        sum += evalBsdf(m, wo, ls.direction, ns) * spectralFromRgb(BUF_ARG ls.radiance) * (cosine * weight);
     }
     BsdfSample bs = sampleBsdf(m, wo, ng, ns, rng);
     vec3 wi = bs.direction;
@@ -85,7 +85,7 @@ PH_FN vec3 environmentDirectLight(BUF_PARAM PH_IN(Light) light, vec3 x, vec3 ns,
     vec3 far = x + wi * (2.0f * (length(x - boundingCenter(light)) + boundingRadius(light)));
     if (!isBlack(radiance) && shadowRayReaches(BUF_ARG x, ng, wi, far)) {
         float weight = powerHeuristic(pdf, environmentPdf(BUF_ARG light, wi));
-        sum += evalBsdf(m, wo, wi, ns) * radiance * (cosI * weight / pdf);
+        sum += evalBsdf(m, wo, wi, ns) * spectralFromRgb(BUF_ARG radiance) * (cosI * weight / pdf);
     }
     return sum;
 }
@@ -109,7 +109,7 @@ PH_FN vec3 directLight(BUF_PARAM vec3 x, vec3 ns, vec3 ng, vec3 wo, PH_IN(Materi
                 continue;
             }
             if (shadowRayReaches(BUF_ARG x, ng, ls.direction, ls.point)) {
-                sum += evalBsdf(m, wo, ls.direction, ns) * ls.radiance * cosine;
+                sum += evalBsdf(m, wo, ls.direction, ns) * spectralFromRgb(BUF_ARG ls.radiance) * cosine;
             }
         }
     }
@@ -128,7 +128,7 @@ PH_FN HitPoint emptyHitPoint() {
     hp.geometricNormal = 0u;
     hp.metallic = 0.0f;
     hp.roughness = 0.0f;
-    hp.pad0 = 0u;
+    hp.channel = CHANNEL_ALL;
     hp.pad1 = 0u;
     return hp;
 }
@@ -165,6 +165,7 @@ PH_FN HitPoint tracePixel(BUF_PARAM uint pixel) {
                         BUF(params).flags, rng);
     HitPoint hp = emptyHitPoint();
     vec3 weight = vec3(1.0f);
+    uint channel = CHANNEL_ALL;
     bool emittersSampled = false;  // the last bounce's lobe took direct light by shadow rays
     for (uint depth = 0u; depth < BUF(params).maxEyeDepth; ++depth) {
         Hit hit;
@@ -172,7 +173,7 @@ PH_FN HitPoint tracePixel(BUF_PARAM uint pixel) {
             // Seen by the camera or through mirrors and glass; after a glossy bounce, direct light
             // has counted an environment that lights the scene already.
             if (!(emittersSampled && BUF(params).scene.environmentLight != NONE)) {
-                hp.direct += weight * infiniteRadiance(BUF_ARG ray.direction);
+                hp.direct += weight * spectralFromRgb(BUF_ARG infiniteRadiance(BUF_ARG ray.direction));
             }
             break;
         }
@@ -181,6 +182,7 @@ PH_FN HitPoint tracePixel(BUF_PARAM uint pixel) {
         uint surface = materialFlags(m);
         vec3 wo = -ray.direction;
         weight *= volumeTransmittance(m, dot(wo, hit.normal), hit.t);
+        meetDispersion(BUF_ARG m, channel, weight, rng);
         if ((surface & SURFACE_EMITS) != 0u) {
             // Seen by the camera or through mirrors and glass; at diffuse surfaces direct light
             // counts the lights (area lights, emissive triangles) with shadow rays.
@@ -241,6 +243,7 @@ PH_FN HitPoint tracePixel(BUF_PARAM uint pixel) {
         weight *= bs.weight;
         ray = makeRay(offsetRayOrigin(hit.position, sp.geometricNormal, bs.direction), bs.direction, FLOAT_MAX);
     }
+    hp.channel = channel;
     return hp;
 }
 

@@ -13,7 +13,8 @@
 
 PH_NAMESPACE_BEGIN
 
-PH_FN vec3 finalGather(BUF_PARAM PH_IN(Shading) s, uint estimator, PH_INOUT(Rng) rng) {
+// `channel`: the eye path's CHANNEL_*, which its gather rays continue.
+PH_FN vec3 finalGather(BUF_PARAM PH_IN(Shading) s, uint estimator, uint eyeChannel, PH_INOUT(Rng) rng) {
     uint rays = BUF(params).gatherRays;
     vec3 sum = vec3(0.0f);
     for (uint g = 0u; g < rays; ++g) {
@@ -22,6 +23,7 @@ PH_FN vec3 finalGather(BUF_PARAM PH_IN(Shading) s, uint estimator, PH_INOUT(Rng)
             continue;
         }
         vec3 weight = bs.weight;
+        uint channel = eyeChannel;
         Ray ray = makeRay(offsetRayOrigin(s.position, s.geometricNormal, bs.direction), bs.direction, FLOAT_MAX);
         for (uint depth = 0u; depth < BUF(params).maxEyeDepth; ++depth) {
             Hit hit;
@@ -36,6 +38,7 @@ PH_FN vec3 finalGather(BUF_PARAM PH_IN(Shading) s, uint estimator, PH_INOUT(Rng)
             vec3 wo = -ray.direction;
             uint surface = materialFlags(m);
             weight *= volumeTransmittance(m, dot(wo, hit.normal), hit.t);
+            meetDispersion(BUF_ARG m, channel, weight, rng);
             if ((surface & SURFACE_STORES_PHOTONS) != 0u) {
                 float side = dot(wo, sp.geometricNormal) >= 0.0f ? 1.0f : -1.0f;
                 Shading there = makeShading(hit.position, sp.shadingNormal * side, sp.geometricNormal * side, wo, hit.material, m);
@@ -106,7 +109,7 @@ PH_FN vec3 gatherPixel(BUF_PARAM uint pixel, uint estimator, uint globalMode) {
     }
     if (viewShowsMap(view, MAP_GLOBAL)) {
         if (globalMode == GLOBAL_FINAL_GATHER) {
-            photons += finalGather(BUF_ARG s, estimator, rng);
+            photons += finalGather(BUF_ARG s, estimator, hp.channel, rng);
         } else {
             photons += photonEstimate(BUF_ARG MAP_GLOBAL, s, estimator, u);
         }

@@ -66,7 +66,9 @@ struct PH_ALIGN16 Material {
     // pbr: metallic and transmission factors ∈ [0, 1]; every type: coverage α (MASK: cut out where
     // α < alphaCutoff; BLEND: kept with probability α)
     vec3 attenuation; uint flags;    // absorption coefficient σa [1/m] inside (Beer–Lambert); MATERIAL_FLAG_*
-    float normalScale; uint pad0; uint pad1; uint pad2;  // scale of the normal texture's x and y
+    float normalScale; float dispersion; uint pad1; uint pad2;
+    // normalScale: scale of the normal texture's x and y; dispersion: 20 / V_d of glass and pbr
+    // transmission, V_d the Abbe number (glTF KHR_materials_dispersion; 0: none), spectral.h
 };
 
 // An image in the texels buffer: width × height texels from `offset`, row by row from the top, as
@@ -154,6 +156,15 @@ struct PH_ALIGN16 SppmMapParams {
     // count as
 };
 
+// The frame's wavelength set under FLAG_SPECTRAL (spectral.h): every path of the frame carries
+// its radiance at these three wavelengths in the x, y and z of its vec3s.
+struct PH_ALIGN16 SpectralParams {
+    vec4 wavelengths;  // λ0, λ1, λ2 [nm]; w unused
+    vec4 cauchy;       // (523655 / λi² - 1.5168) / 20: n(λi) = n_d + (n_d - 1) · dispersion · cauchy_i
+    vec4 fromRgb0; vec4 fromRgb1; vec4 fromRgb2;  // row i: the spectral primaries' values at λi
+    vec4 toRgb0; vec4 toRgb1; vec4 toRgb2;        // row c: linear sRGB channel c of the three samples
+};
+
 struct PH_ALIGN16 FrameParams {
     Camera camera;
     SceneInfo scene;
@@ -171,6 +182,7 @@ struct PH_ALIGN16 FrameParams {
     uint pathFirst; uint pathCount; uint pad0; uint pad1;
     // the paths this renderer traces, [pathFirst, pathFirst + pathCount) of the frame's
     // globalPaths + causticPaths: all of them, or one rank's share when several GPUs split a frame
+    SpectralParams spectrum;
 };
 
 // ---- Photon maps ------------------------------------------------------------------------------
@@ -188,7 +200,9 @@ struct PH_ALIGN16 HitPoint {
     vec3 weight; uint normal;        // path throughput from the camera; octahedral shading normal facing ωo
     vec3 direct; uint outgoing;      // weighted emission, background and direct light; octahedral ωo
     vec3 albedo; uint geometricNormal;  // the albedo there (textured); octahedral geometric normal facing ωo
-    float metallic; float roughness; uint pad0; uint pad1;  // pbr: textured metallic and GGX α there
+    float metallic; float roughness; uint channel; uint pad1;
+    // pbr: textured metallic and GGX α there; channel: the one wavelength of the frame's three the
+    // path kept at a dispersive surface (CHANNEL_ALL: none met), spectral.h
 };
 
 // A pixel's statistics under stochastic progressive photon mapping (sppm.h), kept across frames:
@@ -219,7 +233,7 @@ PH_SIZE(Material, 112); PH_OFFSET(Material, type, 12); PH_OFFSET(Material, specu
 PH_OFFSET(Material, roughness, 28); PH_OFFSET(Material, emission, 32); PH_OFFSET(Material, ior, 44);
 PH_OFFSET(Material, albedoTexture, 48); PH_OFFSET(Material, emissionTexture, 60); PH_OFFSET(Material, metallic, 64);
 PH_OFFSET(Material, alphaCutoff, 76); PH_OFFSET(Material, attenuation, 80); PH_OFFSET(Material, flags, 92);
-PH_OFFSET(Material, normalScale, 96);
+PH_OFFSET(Material, normalScale, 96); PH_OFFSET(Material, dispersion, 100);
 PH_SIZE(Texture, 48); PH_OFFSET(Texture, wrap, 12); PH_OFFSET(Texture, transformS, 16); PH_OFFSET(Texture, transformT, 32);
 PH_SIZE(BvhNode, 64); PH_OFFSET(BvhNode, childA, 12); PH_OFFSET(BvhNode, upperA, 16); PH_OFFSET(BvhNode, countA, 28);
 PH_OFFSET(BvhNode, lowerB, 32); PH_OFFSET(BvhNode, childB, 44); PH_OFFSET(BvhNode, upperB, 48);
@@ -241,18 +255,20 @@ PH_SIZE(GridParams, 48); PH_OFFSET(GridParams, cellSize, 12); PH_OFFSET(GridPara
 PH_OFFSET(GridParams, cellOffset, 28); PH_OFFSET(GridParams, photonOffset, 32);
 PH_OFFSET(GridParams, radius, 40); PH_OFFSET(GridParams, keyBits, 44);
 PH_SIZE(SppmMapParams, 16); PH_OFFSET(SppmMapParams, batches, 8);
-PH_SIZE(FrameParams, 64 + 48 + MAP_COUNT * (48 + 16) + 6 * 16); PH_OFFSET(FrameParams, scene, 64);
+PH_SIZE(SpectralParams, 128); PH_OFFSET(SpectralParams, cauchy, 16); PH_OFFSET(SpectralParams, toRgb0, 80);
+PH_SIZE(FrameParams, 64 + 48 + MAP_COUNT * (48 + 16) + 6 * 16 + 128); PH_OFFSET(FrameParams, scene, 64);
 PH_OFFSET(FrameParams, grids, 112); PH_OFFSET(FrameParams, sppm, 112 + MAP_COUNT * 48);
 PH_OFFSET(FrameParams, width, 112 + MAP_COUNT * 64);
 PH_OFFSET(FrameParams, globalPaths, 128 + MAP_COUNT * 64); PH_OFFSET(FrameParams, estimator, 144 + MAP_COUNT * 64);
 PH_OFFSET(FrameParams, gatherRays, 160 + MAP_COUNT * 64); PH_OFFSET(FrameParams, photonIdBits, 176 + MAP_COUNT * 64);
 PH_OFFSET(FrameParams, alpha, 188 + MAP_COUNT * 64); PH_OFFSET(FrameParams, pathFirst, 192 + MAP_COUNT * 64);
+PH_OFFSET(FrameParams, spectrum, 208 + MAP_COUNT * 64);
 PH_SIZE(SppmFlux, 16); PH_OFFSET(SppmFlux, radius, 12);
 PH_SIZE(SppmPixel, 16 + MAP_COUNT * 16 + 4 * SPPM_COUNT_SLOTS); PH_OFFSET(SppmPixel, maps, 16);
 PH_OFFSET(SppmPixel, count, 16 + MAP_COUNT * 16);
 static_assert(MAP_COUNT <= SPPM_COUNT_SLOTS, "SppmPixel::count holds a slot per map");
 PH_SIZE(Photon, 32); PH_OFFSET(Photon, incoming, 12); PH_OFFSET(Photon, power, 16); PH_OFFSET(Photon, id, 28);
-PH_SIZE(HitPoint, 80); PH_OFFSET(HitPoint, metallic, 64); PH_OFFSET(HitPoint, roughness, 68); PH_OFFSET(HitPoint, material, 12); PH_OFFSET(HitPoint, weight, 16);
+PH_SIZE(HitPoint, 80); PH_OFFSET(HitPoint, metallic, 64); PH_OFFSET(HitPoint, channel, 72); PH_OFFSET(HitPoint, roughness, 68); PH_OFFSET(HitPoint, material, 12); PH_OFFSET(HitPoint, weight, 16);
 PH_OFFSET(HitPoint, normal, 28); PH_OFFSET(HitPoint, direct, 32); PH_OFFSET(HitPoint, outgoing, 44);
 PH_OFFSET(HitPoint, albedo, 48); PH_OFFSET(HitPoint, geometricNormal, 60);
 }  // namespace photon

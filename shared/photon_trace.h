@@ -57,9 +57,9 @@ PH_FN PhotonPath startPhotonPath(BUF_PARAM uint index) {
     float paths = float(causticPass ? BUF(params).causticPaths : BUF(params).globalPaths);
     path.origin = e.origin;
     path.direction = e.direction;
-    path.power = e.power / (paths * pickProbability);
+    path.power = spectralFromRgb(BUF_ARG e.power) / (paths * pickProbability);
     path.depth = 0u;
-    path.flags = PATH_ALIVE | PATH_SPECULAR_ONLY | (causticPass ? PATH_CAUSTIC_PASS : 0u);
+    path.flags = withPathChannel(PATH_ALIVE | PATH_SPECULAR_ONLY | (causticPass ? PATH_CAUSTIC_PASS : 0u), CHANNEL_ALL);
     if (light.type == LIGHT_ENVIRONMENT) {
         path.flags |= PATH_FROM_ENVIRONMENT;
     }
@@ -122,6 +122,9 @@ PH_FN uint photonBounce(BUF_PARAM PH_INOUT(PhotonPath) path, PH_OUT(Photon) phot
         path.flags = 0u;
         return store;
     }
+    uint channel = pathChannel(path.flags);
+    meetDispersion(BUF_ARG m, channel, path.power, path.rng);
+    path.flags = withPathChannel(path.flags, channel);
     BsdfSample bs = sampleBsdf(m, -path.direction, sp.geometricNormal, sp.shadingNormal, path.rng);
     float survival = min(1.0f, maxComponent(bs.weight));
     // The caustic pass ends where its path stops being specular.

@@ -115,7 +115,7 @@ PH_FN vec3 sppmUpdate(BUF_PARAM uint map, PH_IN(Shading) s, vec3 weight, float f
     }
     float r = e.radius;
     vec4 q = radiusQuery(BUF_ARG grid, s, r, KERNEL_BOX, u, true);
-    vec3 phi = weight * vec3(q) * estimateScale(s);
+    vec3 phi = rgbFromSpectral(BUF_ARG weight * vec3(q) * estimateScale(s));  // frames average in RGB
     float m = q.w;
     vec3 frame = phi * (INV_PI / (r * r));
     if (m > 0.0f) {
@@ -175,7 +175,7 @@ PH_FN vec3 gatherSppmMap(BUF_PARAM uint pixel, uint map, float u, bool start) {
 PH_FN vec3 gatherSppm(BUF_PARAM uint pixel, bool start) {
     uint view = BUF(params).view;
     uint accumulated = BUF(params).accumulated;
-    vec3 direct = BUF(hitPoints)[pixel].direct;
+    vec3 direct = rgbFromSpectral(BUF_ARG BUF(hitPoints)[pixel].direct);
     if (accumulated == 0u) {
         BUF(sppmPixels)[pixel] = emptySppmPixel();
     }
@@ -224,7 +224,8 @@ PH_FN vec3 gatherStage(BUF_PARAM uint pixel, uint estimator, uint globalMode, bo
     if (estimator == ESTIMATOR_SPPM && BUF(params).view != VIEW_GRID) {
         return gatherSppm(BUF_ARG pixel, sppmStart);
     }
-    return gatherPixel(BUF_ARG pixel, estimator, globalMode);
+    vec3 radiance = gatherPixel(BUF_ARG pixel, estimator, globalMode);
+    return BUF(params).view == VIEW_GRID ? radiance : rgbFromSpectral(BUF_ARG radiance);
 }
 
 PH_NAMESPACE_END

@@ -2,12 +2,13 @@
 // (for ray offsets and for which side light comes from, so that nothing leaks through at
 // silhouettes), its shading normal (interpolated vertex normals and the normal texture, for BSDFs
 // and cosines), and its material as its textures make it there (albedo, metallic, roughness,
-// emission).
+// emission), at the frame's wavelengths under spectral rendering.
 #ifndef PHOTON_SHARED_SURFACE_H
 #define PHOTON_SHARED_SURFACE_H
 
 #include "intersect.h"
 #include "material.h"
+#include "spectral.h"
 #include "texture.h"
 
 PH_NAMESPACE_BEGIN
@@ -44,7 +45,7 @@ PH_FN vec3 normalMapped(BUF_PARAM PH_IN(Material) m, PH_IN(TriangleAttributes) a
     return dot(n, ng) > 0.0f ? n : ns;
 }
 
-PH_FN SurfacePoint surfaceAt(BUF_PARAM PH_IN(Hit) hit) {
+PH_FN SurfacePoint texturedSurfaceAt(BUF_PARAM PH_IN(Hit) hit) {
     SurfacePoint sp;
     sp.position = hit.position;
     sp.geometricNormal = hit.normal;
@@ -86,6 +87,13 @@ PH_FN SurfacePoint surfaceAt(BUF_PARAM PH_IN(Hit) hit) {
     if (sp.material.normalTexture != NONE && (attributes.flags & ATTRIBUTE_TANGENT) != 0u) {
         sp.shadingNormal = normalMapped(BUF_ARG sp.material, attributes, st, sp.shadingNormal, sp.geometricNormal);
     }
+    return sp;
+}
+
+// The surface as light transport sees it: textured, its colours at the frame's wavelengths.
+PH_FN SurfacePoint surfaceAt(BUF_PARAM PH_IN(Hit) hit) {
+    SurfacePoint sp = texturedSurfaceAt(BUF_ARG hit);
+    sp.material = spectralMaterial(BUF_ARG sp.material);
     return sp;
 }
 

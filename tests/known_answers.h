@@ -82,18 +82,18 @@ struct CausticPeak {
     double density = -1.0;  // the power of the caustic photons within the probe there
 };
 
-// Moves a diffuse screen perpendicular to the axis through z = 1.40 … 1.60 (steps of 0.005)
-// behind the lens; at each place, one frame of nearly only caustic paths, and the power of the
-// caustic photons within `probe` of the axis.
-inline CausticPeak findCausticPeak(const Scene& lens, float probe) {
+// Moves a diffuse screen perpendicular to the axis through z = first … first + 0.2 (steps of
+// 0.005) behind the lens; at each place, one frame of nearly only caustic paths (with `base`'s
+// other settings), and the power of the caustic photons within `probe` of the axis.
+inline CausticPeak findCausticPeak(const Scene& lens, float probe, const RenderSettings& base = {}, float first = 1.40f) {
     CausticPeak peak;
     for (int i = 0; i <= 40; ++i) {
-        float z = 1.40f + 0.005f * float(i);
+        float z = first + 0.005f * float(i);
         Scene s = lens;
         std::uint32_t white = s.addMaterial("white", makeDiffuse(glm::vec3(0.8f)));
         s.addQuad(glm::vec3(-2.0f, -2.0f, z), glm::vec3(4, 0, 0), glm::vec3(0, 4, 0), white);
         s.finalize();
-        RenderSettings settings = sizedSettings({}, 4, 4, 200000);
+        RenderSettings settings = sizedSettings(base, 4, 4, 200000);
         settings.causticFraction = 0.99f;
         settings.causticRadius = probe;
         auto backend = createBackend("cpu");
@@ -104,7 +104,7 @@ inline CausticPeak findCausticPeak(const Scene& lens, float probe) {
         double density = 0.0;
         for (const Photon& p : maps.photons[MAP_CAUSTIC]) {
             if (p.position.x * p.position.x + p.position.y * p.position.y < probe * probe) {
-                density += p.power.x;
+                density += p.power.x + p.power.y + p.power.z;
             }
         }
         if (density > peak.density) {

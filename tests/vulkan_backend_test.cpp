@@ -287,6 +287,24 @@ TEST_F(VulkanBackendTest, EnvironmentScenesMatchCpu) {
     }
 }
 
+// Spectral rendering: the frame's wavelengths in every stage, a dispersive prism whose paths keep
+// one wavelength each (a draw of their own random numbers): on lavapipe the photon maps and hit
+// points equal the CPU's bit for bit, and the images agree.
+TEST_F(VulkanBackendTest, SpectralStagesMatchCpu) {
+    Scene prism = loadSceneFile(test::scenesDir() + "/prism.json");
+    for (const Scene& scene : {featureScene(), prism}) {
+        for (Estimator estimator : {Estimator::Radius, Estimator::Sppm}) {
+            RenderSettings settings = smallSettings();
+            settings.spectral = true;
+            settings.estimator = estimator;
+            render(scene, settings, 2);
+            std::string what = scene.name + " spectral " + toString(estimator);
+            expectSameStages(what);
+            EXPECT_LE(compareImages(cpu_->image(), vulkan_->image(), what), imageTolerance());
+        }
+    }
+}
+
 // A map that overflows its capacity in the first frame is grown and the frame runs again, so the
 // maps hold every photon: they match the CPU's.
 TEST_F(VulkanBackendTest, OverflowingMapGrowsWithoutLosingPhotons) {

@@ -114,6 +114,7 @@ void renderSection(ViewState& state, const HudInfo& info) {
         changed |= sliderUint("gather rays", s.gatherRays, 1, 64);
     }
     changed |= ImGui::Checkbox("pixel centres (no jitter)", &s.pixelCenter);
+    changed |= ImGui::Checkbox("spectral (dispersion)", &s.spectral);
     state.settingsChanged |= changed;
 
     ImGui::SliderFloat("exposure", &state.exposure, -8.0f, 8.0f, "%.1f stops");

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/frame/estimator_policy.h"
+#include "core/spectral/spectrum.h"
 
 namespace photon {
 namespace {
@@ -112,7 +113,10 @@ FrameParams makeFrameParams(const Scene& scene, const CameraDesc& camera, const 
     p.lightSamples = settings.lightSamples;
     p.view = static_cast<std::uint32_t>(settings.view);
     p.flags = (settings.pixelCenter ? FLAG_PIXEL_CENTER : 0u) | (budget.splitCaustics ? FLAG_SPLIT_CAUSTICS : 0u) |
-              (settings.deterministic ? FLAG_DETERMINISTIC : 0u);
+              (settings.deterministic ? FLAG_DETERMINISTIC : 0u) | (isSpectral(settings) ? FLAG_SPECTRAL : 0u);
+    if (isSpectral(settings)) {
+        p.spectrum = frameSpectrum(frameIndex, settings.seed, settings.wavelength);
+    }
     p.photonIdBits = bitsBelow(budget.totalPaths()) + PHOTON_BOUNCE_BITS;
     p.accumulated = accumulated;
     p.gatherBudget = settings.gatherBudget;

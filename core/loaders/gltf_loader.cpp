@@ -37,6 +37,7 @@ const char* const kSupportedRequired[] = {
     "KHR_lights_punctual",          "KHR_materials_transmission", "KHR_materials_ior",
     "KHR_materials_emissive_strength", "KHR_materials_volume",    "KHR_texture_transform",
     "KHR_mesh_quantization",        "EXT_meshopt_compression",    "KHR_draco_mesh_compression",
+    "KHR_materials_dispersion",
 };
 
 struct Loader {
@@ -345,6 +346,25 @@ struct Loader {
         return fallback;
     }
 
+    // KHR_materials_dispersion's 20 / V_d, which applies to volumes only (thin walls: none).
+    float dispersion(const tinygltf::Value& extension, const std::string& here, std::uint32_t flags) const {
+        if (extension.Type() == tinygltf::NULL_TYPE) {
+            return 0.0f;
+        }
+        if (!extension.IsObject()) {
+            fail(here + "/extensions/KHR_materials_dispersion", "must be an object");
+        }
+        if (!extension.Has("dispersion")) {
+            return 0.0f;
+        }
+        const tinygltf::Value& v = extension.Get("dispersion");
+        double d = v.IsNumber() ? v.GetNumberAsDouble() : -1.0;
+        if (!(d >= 0.0 && d <= 1e6)) {
+            fail(here + "/extensions/KHR_materials_dispersion/dispersion", "must be a number from 0 to 1e6 (20 / Abbe number)");
+        }
+        return (flags & MATERIAL_FLAG_THIN_WALLED) != 0u ? 0.0f : float(d);
+    }
+
     static double clamp01(double x) { return std::isfinite(x) ? std::clamp(x, 0.0, 1.0) : 0.0; }
 
     // The scene texture of glTF texture `index` in an encoding, decoded once for each.
@@ -490,6 +510,7 @@ struct Loader {
                 m.attenuation[c] = float(-std::log(colour) / distance);  // Beer–Lambert: σ = −ln(c)/d
             }
         }
+        m.dispersion = dispersion(extension("KHR_materials_dispersion"), here, m.flags);
         if (!g.doubleSided) {
             m.flags |= MATERIAL_FLAG_SINGLE_SIDED;
         }

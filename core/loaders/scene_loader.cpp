@@ -66,6 +66,12 @@ CameraDesc readCamera(const Node& node) {
     return camera;
 }
 
+// An Abbe number V_d (crown glass 59, diamond 55, polycarbonate 32, rutile 9.8) as the dispersion
+// 20 / V_d of KHR_materials_dispersion (shared/spectral.h); none without one.
+float readDispersion(const Node& node) {
+    return node.has("abbe") ? float(20.0 / node["abbe"].number({0.0, 1e6, true, false})) : 0.0f;
+}
+
 Material readSurface(const Node& node) {
     const std::string& type = node["type"].string();
     if (type == "diffuse") {
@@ -77,9 +83,11 @@ Material readSurface(const Node& node) {
         return makeMirror(node.has("reflectance") ? node["reflectance"].rgb(kUnit) : glm::vec3(1.0f));
     }
     if (type == "glass") {
-        node.allowKeys({"type", "emission", "ior", "tint"});
+        node.allowKeys({"type", "emission", "ior", "tint", "abbe"});
         float ior = node.has("ior") ? node["ior"].number(kPositive) : 1.5f;
-        return makeGlass(ior, node.has("tint") ? node["tint"].rgb(kUnit) : glm::vec3(1.0f));
+        Material m = makeGlass(ior, node.has("tint") ? node["tint"].rgb(kUnit) : glm::vec3(1.0f));
+        m.dispersion = readDispersion(node);
+        return m;
     }
     if (type == "glossy" || type == "reflective") {
         // Both are a Lambertian base plus a coat: a GGX lobe (glossy) or a perfect mirror (reflective).
@@ -107,7 +115,7 @@ Material readSurface(const Node& node) {
     if (type == "pbr") {
         // glTF's metallic-roughness model (shared/pbr.h), with transmission and a volume.
         node.allowKeys({"type", "emission", "base_color", "metallic", "roughness", "transmission", "ior", "thin_walled",
-                        "attenuation_color", "attenuation_distance"});
+                        "attenuation_color", "attenuation_distance", "abbe"});
         Material m = makePbr(node["base_color"].rgb(kUnit), node.has("metallic") ? node["metallic"].number(kUnit) : 0.0f,
                              node.has("roughness") ? node["roughness"].number(kUnit) : 0.5f);
         if (node.has("transmission")) {
@@ -127,6 +135,7 @@ Material readSurface(const Node& node) {
             float distance = node["attenuation_distance"].number(kPositive);
             m.attenuation = -glm::log(colour) / distance;  // Beer–Lambert: σ = −ln(colour)/distance
         }
+        m.dispersion = readDispersion(node);
         return m;
     }
     node["type"].fail("unknown material type '" + type + "' (expected diffuse|mirror|glass|glossy|reflective|pbr)");

@@ -48,6 +48,10 @@ SettingSpec choice(const char* key, const char* flagName, const char* help, E Re
 
 // Query radii: r² must be a normal float and 1/r² finite, far from both ends.
 constexpr Range kRadius{1e-15, 1e15};
+constexpr Range kWavelength{360.0, 830.0};  // nm: the visible range the observer covers
+
+// Settings whose 0 means "not set": the radii (automatic) and the wavelength (sampled).
+bool zeroIsUnset(const SettingSpec& spec) { return spec.range.lo == kRadius.lo || spec.range.lo == kWavelength.lo; }
 
 std::vector<SettingSpec> makeSpecs() {
     using R = RenderSettings;
@@ -82,6 +86,10 @@ std::vector<SettingSpec> makeSpecs() {
              &R::pixelCenter),
         flag("deterministic", "--deterministic",
              "GPUs order the photon maps canonically: the same seed gives the same image bit for bit", &R::deterministic),
+        flag("spectral", "--spectral",
+             "Paths carry wavelengths, three a frame, and glass disperses (abbe); RGB otherwise", &R::spectral),
+        number("wavelength", "--wavelength",
+               "Render at this one wavelength [nm] (implies spectral), shown as grey", &R::wavelength, kWavelength),
         choice("view", "--view", "What to show", &R::view),
         number("exposure", "--exposure", "Exposure in stops (PNG and display)", &R::exposure, {-64.0, 64.0}),
         choice("tonemap", "--tonemap", "Tone curve", &R::tonemap),
@@ -231,7 +239,7 @@ void validateSettings(const RenderSettings& settings) {
             }
         } else if (spec.kind != SettingKind::Flag) {
             double value = spec.get(settings);
-            bool automatic = spec.range.lo == kRadius.lo && value == 0.0;  // a radius left to frame setup
+            bool automatic = zeroIsUnset(spec) && value == 0.0;
             if (!automatic) {
                 RenderSettings copy = settings;
                 store(copy, spec, value, formatNumber(value), spec.flag);

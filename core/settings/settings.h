@@ -65,6 +65,8 @@ struct RenderSettings {
     bool pixelCenter = false;             // one ray through each pixel centre, no lens
     bool deterministic = false;           // GPUs order each cell's photons canonically: the same seed
                                           // gives the same image bit for bit (the CPU always does)
+    bool spectral = false;                // paths carry wavelengths (shared/spectral.h): dispersion
+    float wavelength = 0.0f;              // every path at this wavelength [nm] (implies spectral); 0: sampled
     View view = View::Final;
     float exposure = 0.0f;                // stops
     Tonemap tonemap = Tonemap::Aces;
@@ -73,6 +75,9 @@ struct RenderSettings {
 
 // A photon map's query radius as set (0: automatic), and the flag that sets it.
 float mapRadius(const RenderSettings& settings, std::uint32_t map);
+
+// Whether paths carry wavelengths: --spectral, or one wavelength given.
+inline bool isSpectral(const RenderSettings& settings) { return settings.spectral || settings.wavelength > 0.0f; }
 const char* mapRadiusFlag(std::uint32_t map);
 
 const char* toString(Estimator e);
