@@ -48,6 +48,9 @@ python3 -c "import json,sys; j=json.load(open(sys.argv[1])); assert j['frames']=
   || { echo "FAIL: --frames caps --time"; failures=$((failures + 1)); }
 expect 0 "" "$scenes/bunny.json" --backend cpu --width 32 --height 24 --photons 5000 --frames 1 -o "$tmp/bunny.png"
 expect 0 "" "$scenes/textured.glb" --backend cpu --width 32 --height 24 --photons 5000 --frames 1 -o "$tmp/textured.png"
+expect 0 "" "$scenes/prism.json" "${small[@]}" -o "$tmp/prism.png"
+expect 0 "" "${small[@]}" --spectral -o "$tmp/spectral.pfm"
+expect 0 "" "${small[@]}" --wavelength 550 -o "$tmp/green.pfm"
 
 # Bad input: exit 2 with the file, the place and the reason.
 printf '{ "camera": { "position": [0, 0, 1], }' > "$tmp/broken.json"
@@ -60,6 +63,10 @@ expect 2 "missing.json: cannot open scene file: No such file or directory" "$tmp
 expect 2 "" "${small[@]}" --width 0
 expect 2 "" "${small[@]}" --photons -5
 expect 2 "--estimator: unknown value 'nearest'" "${small[@]}" --estimator nearest
+expect 2 "--wavelength: must be in [360, 830] (got 300)" "${small[@]}" --wavelength 300
+expect 2 "--wavelength: must be in [360, 830] (got 'nan', not a number)" "${small[@]}" --wavelength nan
+sed 's/"type": "glass", "ior": 1.6, "abbe": 12/"type": "glass", "ior": 1.6, "abbe": -12/' "$scenes/prism.json" > "$tmp/abbe.json"
+expect 2 "abbe.json: /materials/glass/abbe: must be in (0, 1e+06] (got -12)" "$tmp/abbe.json" "${small[@]}" -o "$tmp/x.png"
 expect 2 "unknown image format" "${small[@]}" -o "$tmp/x.bmp"
 expect 2 "" "${small[@]}" --no-such-option
 expect 2 "opencl not in" --backend opencl

@@ -34,6 +34,24 @@ TEST(GltfLoader, MatrixNodesAndMeshesUsedTwice) {
     EXPECT_EQ(scene.triangles[0].material, scene.triangles[1].material) << "one glTF material, one Photon material";
 }
 
+// KHR_materials_dispersion on a volume (thin walls do not disperse: the extension applies to
+// volumes only), and KHR_materials_dispersion among the required extensions.
+TEST(GltfLoader, DispersionOfVolumes) {
+    Gltf g;
+    g.parts["extensionsUsed"] = R"(["KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_dispersion"])";
+    g.parts["extensionsRequired"] = R"(["KHR_materials_dispersion"])";
+    g.parts["materials"] = R"([
+        {"extensions": {"KHR_materials_transmission": {"transmissionFactor": 1}, "KHR_materials_volume": {"thicknessFactor": 1},
+                        "KHR_materials_dispersion": {"dispersion": 0.5}}},
+        {"extensions": {"KHR_materials_transmission": {"transmissionFactor": 1}, "KHR_materials_dispersion": {"dispersion": 0.5}}}])";
+    g.trianglePerMaterial(2);
+    Scene scene;
+    load(scene, "d.gltf", g.text());
+    ASSERT_EQ(scene.triangles.size(), 2u);
+    EXPECT_FLOAT_EQ(scene.materials[scene.triangles[0].material].dispersion, 0.5f);
+    EXPECT_EQ(scene.materials[scene.triangles[1].material].dispersion, 0.0f);
+}
+
 TEST(GltfLoader, MaterialsMapAsDocumented) {
     Gltf g;
     g.parts["extensionsUsed"] = R"(["KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_emissive_strength"])";
@@ -206,6 +224,17 @@ TEST(GltfLoader, BadFilesNameTheJsonPointerAndTheReason) {
         Gltf g;
         g.parts["meshes"] = R"([{"primitives": [{"attributes": {"POSITION": 7}}]}])";
         EXPECT_EQ(errorOf("b.gltf", g.text()), "b.gltf: /meshes/0/primitives/0: accessor 7 does not exist");
+    }
+    // KHR_materials_dispersion: a number from 0 (20 / Abbe number); anything else by name.
+    for (const char* value : {"-1", "\"high\"", "[1]", "{\"v\": 1}", "true"}) {
+        Gltf g;
+        g.parts["extensionsUsed"] = R"(["KHR_materials_dispersion", "KHR_materials_volume"])";
+        g.parts["materials"] = std::string(R"([{"extensions": {"KHR_materials_volume": {"thicknessFactor": 1},
+                                                "KHR_materials_dispersion": {"dispersion": )") + value + "}}}]";
+        g.parts["meshes"] = R"([{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": 0}]}])";
+        EXPECT_EQ(errorOf("b.gltf", g.text()), "b.gltf: /materials/0/extensions/KHR_materials_dispersion/dispersion: "
+                                               "must be a number from 0 to 1e6 (20 / Abbe number)")
+            << value;
     }
     for (const char* ior : {"0", "0.5"}) {
         Gltf g;

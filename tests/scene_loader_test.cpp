@@ -131,6 +131,26 @@ TEST(SceneLoader, PbrMaterial) {
               "x.json: /materials/white: attenuation_color and attenuation_distance come together");
 }
 
+// Dispersion by the Abbe number: dispersion = 20 / V_d (KHR_materials_dispersion's value); a
+// non-positive or non-numeric one is refused by name.
+TEST(SceneLoader, AbbeNumberSetsDispersion) {
+    Scene scene = load(sceneWith("materials", R"({
+        "flint": {"type": "glass", "ior": 1.6, "abbe": 32},
+        "gem": {"type": "pbr", "base_color": [1, 1, 1], "transmission": 1, "abbe": 20},
+        "crown": {"type": "glass"}, "white": {"type": "diffuse", "albedo": [0.8, 0.8, 0.8]}})"));
+    EXPECT_FLOAT_EQ(scene.materials[scene.findMaterial("flint")].dispersion, 20.0f / 32.0f);
+    EXPECT_FLOAT_EQ(scene.materials[scene.findMaterial("gem")].dispersion, 1.0f);
+    EXPECT_EQ(scene.materials[scene.findMaterial("crown")].dispersion, 0.0f);
+    EXPECT_EQ(errorOf(sceneWith("materials", R"({"g": {"type": "glass", "abbe": 0}})")),
+              "x.json: /materials/g/abbe: must be in (0, 1e+06] (got 0)");
+    EXPECT_EQ(errorOf(sceneWith("materials", R"({"g": {"type": "glass", "abbe": -5}})")),
+              "x.json: /materials/g/abbe: must be in (0, 1e+06] (got -5)");
+    EXPECT_EQ(errorOf(sceneWith("materials", R"({"g": {"type": "glass", "abbe": "crown"}})")),
+              "x.json: /materials/g/abbe: expected a number (got string)");
+    EXPECT_EQ(errorOf(sceneWith("materials", R"({"g": {"type": "diffuse", "albedo": [1, 1, 1], "abbe": 30}})")),
+              "x.json: /materials/g/abbe: unknown key");
+}
+
 TEST(SceneLoader, QuadArea) {
     Scene scene = load(sceneWith("objects", R"([{"type": "quad", "corner": [0, 0, 0], "edge_u": [2, 0, 0],
                                                  "edge_v": [0, 0, 3], "material": "white"}])"));

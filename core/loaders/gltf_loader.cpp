@@ -348,13 +348,7 @@ struct Loader {
 
     // KHR_materials_dispersion's 20 / V_d, which applies to volumes only (thin walls: none).
     float dispersion(const tinygltf::Value& extension, const std::string& here, std::uint32_t flags) const {
-        if (extension.Type() == tinygltf::NULL_TYPE) {
-            return 0.0f;
-        }
-        if (!extension.IsObject()) {
-            fail(here + "/extensions/KHR_materials_dispersion", "must be an object");
-        }
-        if (!extension.Has("dispersion")) {
+        if (!extension.IsObject() || !extension.Has("dispersion")) {
             return 0.0f;
         }
         const tinygltf::Value& v = extension.Get("dispersion");

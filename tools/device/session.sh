@@ -3,7 +3,7 @@
 # the checkouts) from the project root, with the
 # binaries of `cmake --preset device && cmake --build --preset device` carried in build-device/bin
 # and .devlibs/ prepared by tools/device/prepare.sh. Writes logs and JSON under $OUT.
-#   tools/device/session.sh tests sanitize sanitize-new environment frames meshes converge pictures bundle-all
+#   tools/device/session.sh tests sanitize sanitize-new environment frames meshes converge spectral pictures bundle-all
 set -uo pipefail
 source .devlibs/setup.sh >/dev/null
 bin=build-device/bin
@@ -162,6 +162,41 @@ for step in "$@"; do
       $bin/photon-render scenes/cornell.json --backend cuda --estimator sppm --frames ${REF_FRAMES:-4096} \
         --photons 2000000 --seed 99 -o "$out/ref-cornell-640x480.pfm" -q
       summary+=("reference cornell 640x480: exit $?") ;;
+    spectral)
+      # Issue 21: the spectral frame against the RGB one, converged references of the Cornell box in
+      # both modes and of the dispersive gem, error against GPU time in both modes, the spectral
+      # kernels under compute-sanitizer, and the pictures.
+      $bin/photon-bench --backends cuda,vulkan --resolutions 1920x1080,3840x2160 --photons 1000000 --frames 50 \
+        --vary spectral=false,true --json "$out/spectral-bench.json" | tee "$out/spectral-bench.log"
+      for mode in rgb spectral; do
+        flag=""; [ $mode = spectral ] && flag="--spectral"
+        $bin/photon-render scenes/cornell.json --backend cuda --estimator sppm --frames ${REF_FRAMES:-4096} \
+          --photons 2000000 --seed 99 $flag -o "$out/ref-cornell-$mode.pfm" -q
+        summary+=("reference cornell $mode: exit $?")
+        $bin/photon-converge scenes/cornell.json --reference "$out/ref-cornell-$mode.pfm" --backend cuda \
+          --estimators sppm --set spectral=$([ $mode = spectral ] && echo true || echo false) --set photons=500000 \
+          --frames ${CONVERGE_FRAMES:-1024} --json "$out/converge-cornell-$mode.json" | tee "$out/converge-cornell-$mode.log"
+      done
+      $bin/photon-converge scenes/cornell.json --reference "$out/ref-cornell-rgb.pfm" --compare "$out/ref-cornell-spectral.pfm" \
+        | tee "$out/spectral-vs-rgb.log"
+      $bin/photon-render scenes/gem.json --backend cuda --estimator sppm --frames ${REF_FRAMES:-4096} --photons 2000000 \
+        --seed 99 -o "$out/ref-gem.pfm" -q
+      summary+=("reference gem: exit $?")
+      $bin/photon-converge scenes/gem.json --reference "$out/ref-gem.pfm" --backend cuda --estimators sppm,progressive \
+        --set photons=1000000 --window auto --frames ${CONVERGE_FRAMES:-1024} --json "$out/converge-gem.json" | tee "$out/converge-gem.log"
+      for tool in memcheck racecheck; do
+        for run in "scenes/prism.json --frames 3" "scenes/gem.json --frames 3 --estimator radius" \
+                   "scenes/cornell.json --frames 2 --spectral --deterministic"; do
+          compute-sanitizer --tool $tool --error-exitcode 9 $bin/photon-render $run --backend cuda --width 96 --height 72 \
+            --photons 30000 -o "$out/sanitize.png" -q >>"$out/$tool-spectral.log" 2>&1
+          summary+=("$tool $run: exit $?")
+        done
+      done
+      for scene in prism gem; do
+        $bin/photon-render scenes/$scene.json --backend cuda --width 1280 --height 800 --photons 2000000 --time 3 \
+          -o "$out/picture-$scene.png" -q
+        summary+=("picture $scene: exit $?")
+      done ;;
     pictures)
       for scene in bunny.json textured.glb smallpt.json; do
         $bin/photon-render scenes/$scene --backend cuda --width 1280 --height 960 --photons 2000000 --time 3 \
