@@ -131,6 +131,7 @@ int run(int argc, char** argv) {
     }
     std::unique_ptr<Backend> backend = createBackend(backendName, options);
     choosePhotons(base, backend->runsOnCpu());
+    chooseSpectral(base, scene);
     backend->setScene(scene);
     nlohmann::json out;
     out["scene"] = scene.name;

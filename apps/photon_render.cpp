@@ -132,6 +132,7 @@ int run(int argc, char** argv) {
         seconds = kDefaultRenderSeconds;
     }
     chooseDefaults(settings, timed);
+    chooseSpectral(settings, scene);
     validateSettings(settings);
     // Outputs that cannot be written fail now, not after the render.
     imageFormatFor(output);

@@ -137,6 +137,30 @@ TEST(DefaultPhotons, FollowTheProcessorUnlessGiven) {
     EXPECT_EQ(fromFile.photons, 70000u);
 }
 
+// Spectral rendering comes on by itself for a scene with a dispersive material, unless the file or
+// the command line says otherwise; RGB elsewhere.
+TEST(DefaultSpectral, OnWhereAMaterialDisperses) {
+    auto sceneWith = [](const char* glass, const char* render) {
+        return loadSceneJson(std::string(R"({"camera": {"position": [0, 0, 5], "look_at": [0, 0, 0], "fov": 40},
+            "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "glass"}],
+            "materials": {"glass": )") + glass + R"(},
+            "lights": [{"type": "point", "position": [0, 3, 0], "power": [1, 1, 1]}], "render": )" + render + "}",
+                             "inline.json", "", defaultFileReader());
+    };
+    Scene plain = sceneWith(R"({"type": "glass", "ior": 1.5})", "{}");
+    Scene flint = sceneWith(R"({"type": "glass", "ior": 1.6, "abbe": 30})", "{}");
+    Scene flintRgb = sceneWith(R"({"type": "glass", "ior": 1.6, "abbe": 30})", R"({"spectral": false})");
+    for (auto [scene, expected] : {std::pair{&plain, false}, {&flint, true}, {&flintRgb, false}}) {
+        RenderSettings s = scene->render;
+        chooseSpectral(s, *scene);
+        EXPECT_EQ(s.spectral, expected) << scene->materials.size();
+    }
+    RenderSettings given = flint.render;
+    setSetting(given, *findSetting("spectral"), "false", "--spectral");
+    chooseSpectral(given, flint);
+    EXPECT_FALSE(given.spectral);
+}
+
 // In the closed box nearly every global photon lands where a pixel sees; through a narrow lens that
 // sees a patch of the back wall, few do. The measure counts each photon once, whatever the discs.
 TEST(PhotonUse, FollowsWhatTheCameraSees) {

@@ -146,6 +146,7 @@ void Viewer::installScene(const Scene& scene, const std::string& path, bool keep
         camera_ = CameraController(scene.camera, scene.diagonal());
         state_.settings = scene.render;
         chooseDefaults(state_.settings, true);
+        chooseSpectral(state_.settings, scene);
         choosePhotons(state_.settings, backend_->runsOnCpu());
         state_.exposure = scene.render.exposure;
         state_.tonemap = scene.render.tonemap;

@@ -504,7 +504,7 @@ void readRender(const Node& node, RenderSettings& s) {
             } else if (v.is_string() && spec->kind == SettingKind::Choice) {
                 setSetting(s, *spec, v.get<std::string>(), value.where());
             } else if (v.is_boolean() && spec->kind == SettingKind::Flag) {
-                spec->set(s, v.get<bool>() ? 1.0 : 0.0);
+                setSetting(s, *spec, v.get<bool>() ? "true" : "false", value.where());  // given, as any other
             } else {
                 const char* expected = spec->kind == SettingKind::Choice ? "a string"
                                        : spec->kind == SettingKind::Flag ? "true or false"

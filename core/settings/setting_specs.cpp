@@ -278,6 +278,14 @@ void choosePhotons(RenderSettings& settings, bool onCpu) {
     settings.photons = std::uint32_t(std::clamp<std::uint64_t>(photons, kCpuPhotonsMin, kGpuDefaultPhotons));
 }
 
+void chooseSpectral(RenderSettings& settings, const Scene& scene) {
+    if (isGiven(settings, "spectral")) {
+        return;
+    }
+    settings.spectral = std::any_of(scene.materials.begin(), scene.materials.end(),
+                                    [](const Material& m) { return m.dispersion > 0.0f; });
+}
+
 void validateForScene(const RenderSettings& settings, const Scene& scene, const FrameRadii& radii) {
     glm::vec3 extent = scene.boundsMax - scene.boundsMin;
     double size = std::max({double(extent.x), double(extent.y), double(extent.z)});

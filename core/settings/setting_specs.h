@@ -83,6 +83,11 @@ inline constexpr std::uint32_t kCpuPixelsPerPhoton = 3;
 inline constexpr std::uint32_t kCpuPhotonsMin = 20000;
 void choosePhotons(RenderSettings& settings, bool onCpu);
 
+// Spectral rendering when neither the file nor the command line says: on for a scene with a
+// dispersive material (an Abbe number, KHR_materials_dispersion), which RGB cannot show; else RGB
+// (spectral's first frames carry a colour cast; docs/performance.md, issue 21).
+void chooseSpectral(RenderSettings& settings, const Scene& scene);
+
 // The default length of photon-render's render without --frames, --time or frames in the scene.
 inline constexpr double kDefaultRenderSeconds = 2.0;
 
