@@ -4,6 +4,7 @@
 #include "../shared/bindings.h"
 #include "../shared/bsdf.h"
 #include "../shared/constants.h"
+#include "../shared/dispersion.h"
 #include "../shared/environment.h"
 #include "../shared/estimate.h"
 #include "../shared/eye_trace.h"

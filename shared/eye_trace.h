@@ -7,6 +7,7 @@
 #define PHOTON_SHARED_EYE_TRACE_H
 
 #include "bsdf.h"
+#include "dispersion.h"
 #include "lights.h"
 #include "surface.h"
 
@@ -235,7 +236,7 @@ PH_FN HitPoint tracePixel(BUF_PARAM uint pixel) {
         if (mirrorCoat) {
             bs = absorbAcrossSurface(sampleMirrorCoat(m, wo, ns), sp.geometricNormal, side, false);
         } else {
-            bs = sampleBsdf(m, wo, sp.geometricNormal, sp.shadingNormal, rng);
+            bs = sampleBsdfAlongPath(BUF_ARG m, wo, sp.geometricNormal, sp.shadingNormal, channel, rng);
         }
         if (bs.lobe == LOBE_NONE) {
             break;

@@ -8,6 +8,7 @@
 #ifndef PHOTON_SHARED_GATHER_H
 #define PHOTON_SHARED_GATHER_H
 
+#include "dispersion.h"
 #include "estimate.h"
 #include "surface.h"
 
@@ -48,7 +49,7 @@ PH_FN vec3 finalGather(BUF_PARAM PH_IN(Shading) s, uint estimator, uint eyeChann
             if ((surface & SURFACE_CAUSTIC_CASTER) == 0u) {
                 break;
             }
-            BsdfSample next = sampleBsdf(m, wo, sp.geometricNormal, sp.shadingNormal, rng);
+            BsdfSample next = sampleBsdfAlongPath(BUF_ARG m, wo, sp.geometricNormal, sp.shadingNormal, channel, rng);
             if (next.lobe == LOBE_NONE) {
                 break;
             }

@@ -22,6 +22,7 @@
 #define PHOTON_SHARED_PHOTON_TRACE_H
 
 #include "bsdf.h"
+#include "dispersion.h"
 #include "lights.h"
 #include "surface.h"
 
@@ -124,8 +125,8 @@ PH_FN uint photonBounce(BUF_PARAM PH_INOUT(PhotonPath) path, PH_OUT(Photon) phot
     }
     uint channel = pathChannel(path.flags);
     meetDispersion(BUF_ARG m, channel, path.power, path.rng);
+    BsdfSample bs = sampleBsdfAlongPath(BUF_ARG m, -path.direction, sp.geometricNormal, sp.shadingNormal, channel, path.rng);
     path.flags = withPathChannel(path.flags, channel);
-    BsdfSample bs = sampleBsdf(m, -path.direction, sp.geometricNormal, sp.shadingNormal, path.rng);
     float survival = min(1.0f, maxComponent(bs.weight));
     // The caustic pass ends where its path stops being specular.
     bool leavesCausticPass = causticPass && bs.lobe != LOBE_SPECULAR;

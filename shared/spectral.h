@@ -10,16 +10,11 @@
 //     lights;
 //   - the gather leaves in linear sRGB (toRgb: the CIE 1931 observer over the samples' densities),
 //     before anything is averaged across frames.
-// A dispersive material's index of refraction depends on the wavelength (KHR_materials_dispersion):
-// where a path first meets one it keeps one of the three wavelengths, drawn uniformly, at three
-// times its weight (pbrt-v4's TerminateSecondary, with the kept one drawn: a photon path and an eye
-// path then keep theirs independently, and the product of their weights stays unbiased), and from
-// then on refracts by that wavelength's index.
+// A dispersive material's index of refraction depends on the wavelength: dispersion.h.
 #ifndef PHOTON_SHARED_SPECTRAL_H
 #define PHOTON_SHARED_SPECTRAL_H
 
 #include "bindings.h"
-#include "rng.h"
 
 PH_NAMESPACE_BEGIN
 
@@ -53,32 +48,6 @@ PH_FN Material spectralMaterial(BUF_PARAM PH_IN(Material) m) {
         s.attenuation = spectralFromRgb(BUF_ARG m.attenuation);
     }
     return s;
-}
-
-PH_FN bool disperses(BUF_PARAM PH_IN(Material) m) {
-    return isSpectral(BUF(params).flags) && m.dispersion > 0.0f;
-}
-
-PH_FN float cauchyTerm(BUF_PARAM uint channel) {
-    vec4 c = BUF(params).spectrum.cauchy;
-    return channel == 0u ? c.x : (channel == 1u ? c.y : c.z);
-}
-
-// A path (its weight and CHANNEL_*) meets material m: at a dispersive one it keeps one wavelength
-// if it still carries all three, and m refracts by that wavelength's index. One draw, the first
-// time only.
-PH_FN void meetDispersion(BUF_PARAM PH_INOUT(Material) m, PH_INOUT(uint) channel, PH_INOUT(vec3) weight,
-                          PH_INOUT(Rng) rng) {
-    if (!disperses(BUF_ARG m)) {
-        return;
-    }
-    if (channel == CHANNEL_ALL) {
-        float u = rngNext(rng);
-        channel = min(uint(u * 3.0f), 2u);
-        weight = vec3(channel == 0u ? 3.0f * weight.x : 0.0f, channel == 1u ? 3.0f * weight.y : 0.0f,
-                      channel == 2u ? 3.0f * weight.z : 0.0f);
-    }
-    m.ior = max(m.ior + (m.ior - 1.0f) * m.dispersion * cauchyTerm(BUF_ARG channel), 1.0f);
 }
 
 PH_FN uint pathChannel(uint pathFlags) { return (pathFlags >> PATH_CHANNEL_SHIFT) & 3u; }

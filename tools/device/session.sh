@@ -183,7 +183,7 @@ for step in "$@"; do
         --seed 99 -o "$out/ref-gem.pfm" -q
       summary+=("reference gem: exit $?")
       $bin/photon-converge scenes/gem.json --reference "$out/ref-gem.pfm" --backend cuda --estimators sppm,progressive \
-        --set photons=1000000 --window auto --frames ${CONVERGE_FRAMES:-1024} --json "$out/converge-gem.json" | tee "$out/converge-gem.log"
+        --set photons=1000000 --window ${GEM_WINDOW:-296,290,336,316} --frames ${CONVERGE_FRAMES:-1024} --json "$out/converge-gem.json" | tee "$out/converge-gem.log"
       for tool in memcheck racecheck; do
         for run in "scenes/prism.json --frames 3" "scenes/gem.json --frames 3 --estimator radius" \
                    "scenes/cornell.json --frames 2 --spectral --deterministic"; do
