@@ -162,6 +162,29 @@ TEST(SpectralRender, NonDispersiveSceneMatchesRgb) {
     EXPECT_LT(error, 0.05);
 }
 
+// Dispersion moves light between wavelengths' directions but neither makes nor loses any: the
+// caustic scene with an Abbe number of 30 has the image mean it has without one.
+TEST(SpectralRender, DispersionKeepsTheEnergy) {
+    Scene plain = loadSceneFile(test::scenesDir() + "/caustic.json");
+    Scene dispersive = plain;
+    dispersive.materials[dispersive.findMaterial("glass")].dispersion = 20.0f / 30.0f;
+    RenderSettings settings = test::sizedSettings(plain.render, 64, 48, 50000);
+    settings.spectral = true;
+    glm::dvec3 mean[2];
+    for (int d = 0; d < 2; ++d) {
+        Image image = test::renderOnCpu(d ? dispersive : plain, settings, 96);
+        mean[d] = glm::dvec3(0.0);
+        for (const glm::vec4& p : image.pixels) {
+            mean[d] += glm::dvec3(p);
+        }
+    }
+    std::printf("caustic scene, dispersive / not: means (%.4f, %.4f, %.4f)\n", mean[1].x / mean[0].x,
+                mean[1].y / mean[0].y, mean[1].z / mean[0].z);
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(mean[1][c] / mean[0][c], 1.0, 0.01) << "channel " << c;
+    }
+}
+
 TEST(SpectralRender, SameSeedSameImage) {
     Scene scene = loadSceneFile(test::scenesDir() + "/prism.json");
     RenderSettings settings = test::sizedSettings(scene.render, 40, 25, 20000);
