@@ -21,8 +21,8 @@ glm::dvec3 cie1931(double lambda);
 // λ ∈ [360, 830] nm from u ∈ [0, 1), with a density proportional to |r̄| + |ḡ| + |b̄|, the
 // observer's linear sRGB matching functions (tabulated at 1 nm, uniform within each), and that
 // density. Against pbrt-v4's SampleVisibleWavelengths (a density close to ȳ's), a flat spectrum
-// seen through the frames' wavelength sets is 2.6× closer to white after one frame and 2.1× after
-// sixteen (docs/performance.md): ȳ's density starves the blue channel.
+// seen through the frames' wavelength sets is 2.6× closer to white after one frame, 2.1× after
+// four and 4.2× after sixteen (tools/wavelength_sampling.py): ȳ's density starves the blue channel.
 double sampleVisibleWavelength(double u);
 double visibleWavelengthPdf(double lambda);
 
