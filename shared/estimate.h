@@ -28,6 +28,7 @@ struct Shading {
     vec3 geometricNormal;  // facing wo: the side photons must come from, the plane of the disc
     vec3 wo;
     vec3 albedo;           // as the textures make it here
+    vec3 specular;         // the glossy lobe's colour (at the frame's wavelengths, as albedo)
     float metallic;
     float roughness;
     uint material;         // index into materials
@@ -42,6 +43,7 @@ PH_FN Shading makeShading(vec3 position, vec3 normal, vec3 geometricNormal, vec3
     s.geometricNormal = geometricNormal;
     s.wo = wo;
     s.albedo = textured.albedo;
+    s.specular = textured.specular;
     s.metallic = textured.metallic;
     s.roughness = textured.roughness;
     s.material = material;
@@ -51,8 +53,9 @@ PH_FN Shading makeShading(vec3 position, vec3 normal, vec3 geometricNormal, vec3
 
 // The part of the point's material that photons and gather rays see (storedPart), textured.
 PH_FN Material shadingMaterial(BUF_PARAM PH_IN(Shading) s) {
-    Material m = spectralMaterial(BUF_ARG storedPart(BUF(materials)[s.material]));
+    Material m = storedPart(BUF(materials)[s.material]);
     m.albedo = s.albedo;
+    m.specular = s.specular;
     m.metallic = s.metallic;
     m.roughness = s.roughness;
     return m;

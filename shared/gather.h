@@ -77,6 +77,7 @@ PH_FN bool viewShowsMap(uint view, uint map) {
 PH_FN Shading hitPointShading(BUF_PARAM PH_IN(HitPoint) hp) {
     Material m = BUF(materials)[hp.material];
     m.albedo = hp.albedo;
+    m.specular = spectralFromRgb(BUF_ARG m.specular);
     m.metallic = hp.metallic;
     m.roughness = hp.roughness;
     return makeShading(hp.position, octDecode(hp.normal), octDecode(hp.geometricNormal), octDecode(hp.outgoing),

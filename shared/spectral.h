@@ -6,8 +6,8 @@
 // unchanged:
 //   - RGB values enter through the spectral primaries (fromRgb: three non-negative spectra that
 //     sum to one and project to the sRGB primaries, Mallett & Yuksel 2019), where materials are
-//     textured (surfaceAt, shadingMaterial), where photons leave lights and where eye paths read
-//     lights;
+//     textured (surfaceAt; hitPointShading for the glossy colour), where photons leave lights
+//     and where eye paths read lights;
 //   - the gather leaves in linear sRGB (toRgb: the CIE 1931 observer over the samples' densities),
 //     before anything is averaged across frames.
 // A dispersive material's index of refraction depends on the wavelength: dispersion.h.
