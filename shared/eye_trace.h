@@ -94,7 +94,7 @@ PH_FN vec3 environmentDirectLight(BUF_PARAM PH_IN(Light) light, vec3 x, vec3 ns,
 // Reflected direct light at x from every light, lightSamples shadow rays each (two for the
 // environment). ns is the shading normal and ng the geometric one, both facing wo; light from
 // behind the geometric surface is not reflected, and shadow rays leave from its side.
-PH_FN_OUTLINED vec3 directLight(BUF_PARAM vec3 x, vec3 ns, vec3 ng, vec3 wo, PH_IN(Material) m, PH_INOUT(Rng) rng) {
+PH_FN vec3 directLight(BUF_PARAM vec3 x, vec3 ns, vec3 ng, vec3 wo, PH_IN(Material) m, PH_INOUT(Rng) rng) {
     vec3 sum = vec3(0.0f);
     uint samples = BUF(params).lightSamples;
     for (uint l = 0u; l < BUF(params).scene.lightCount; ++l) {
