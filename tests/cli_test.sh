@@ -66,7 +66,7 @@ expect 2 "--estimator: unknown value 'nearest'" "${small[@]}" --estimator neares
 expect 2 "--wavelength: must be in [360, 830] (got 300)" "${small[@]}" --wavelength 300
 expect 2 "--wavelength: must be in [360, 830] (got 'nan', not a number)" "${small[@]}" --wavelength nan
 sed 's/"type": "glass", "ior": 1.6, "abbe": 12/"type": "glass", "ior": 1.6, "abbe": -12/' "$scenes/prism.json" > "$tmp/abbe.json"
-expect 2 "abbe.json: /materials/glass/abbe: must be in (0, 1e+06] (got -12)" "$tmp/abbe.json" "${small[@]}" -o "$tmp/x.png"
+expect 2 "abbe.json: /materials/glass/abbe: must be in [1, 1e+06] (got -12)" "$tmp/abbe.json" "${small[@]}" -o "$tmp/x.png"
 expect 2 "unknown image format" "${small[@]}" -o "$tmp/x.bmp"
 expect 2 "" "${small[@]}" --no-such-option
 expect 2 "opencl not in" --backend opencl

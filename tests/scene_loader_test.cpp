@@ -142,9 +142,11 @@ TEST(SceneLoader, AbbeNumberSetsDispersion) {
     EXPECT_FLOAT_EQ(scene.materials[scene.findMaterial("gem")].dispersion, 1.0f);
     EXPECT_EQ(scene.materials[scene.findMaterial("crown")].dispersion, 0.0f);
     EXPECT_EQ(errorOf(sceneWith("materials", R"({"g": {"type": "glass", "abbe": 0}})")),
-              "x.json: /materials/g/abbe: must be in (0, 1e+06] (got 0)");
+              "x.json: /materials/g/abbe: must be in [1, 1e+06] (got 0)");
     EXPECT_EQ(errorOf(sceneWith("materials", R"({"g": {"type": "glass", "abbe": -5}})")),
-              "x.json: /materials/g/abbe: must be in (0, 1e+06] (got -5)");
+              "x.json: /materials/g/abbe: must be in [1, 1e+06] (got -5)");
+    EXPECT_EQ(errorOf(sceneWith("materials", R"({"g": {"type": "glass", "abbe": 1e-300}})")),
+              "x.json: /materials/g/abbe: must be in [1, 1e+06] (got 1e-300)");
     EXPECT_EQ(errorOf(sceneWith("materials", R"({"g": {"type": "glass", "abbe": "crown"}})")),
               "x.json: /materials/g/abbe: expected a number (got string)");
     EXPECT_EQ(errorOf(sceneWith("materials", R"({"g": {"type": "diffuse", "albedo": [1, 1, 1], "abbe": 30}})")),

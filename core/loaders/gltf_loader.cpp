@@ -353,8 +353,8 @@ struct Loader {
         }
         const tinygltf::Value& v = extension.Get("dispersion");
         double d = v.IsNumber() ? v.GetNumberAsDouble() : -1.0;
-        if (!(d >= 0.0 && d <= 1e6)) {
-            fail(here + "/extensions/KHR_materials_dispersion/dispersion", "must be a number from 0 to 1e6 (20 / Abbe number)");
+        if (!(d >= 0.0 && d <= 20.0)) {  // an Abbe number of at least 1, as the scene files' abbe
+            fail(here + "/extensions/KHR_materials_dispersion/dispersion", "must be a number from 0 to 20 (20 / Abbe number)");
         }
         return (flags & MATERIAL_FLAG_THIN_WALLED) != 0u ? 0.0f : float(d);
     }

@@ -67,9 +67,10 @@ CameraDesc readCamera(const Node& node) {
 }
 
 // An Abbe number V_d (crown glass 59, diamond 55, polycarbonate 32, rutile 9.8) as the dispersion
-// 20 / V_d of KHR_materials_dispersion (shared/spectral.h); none without one.
+// 20 / V_d of KHR_materials_dispersion (shared/dispersion.h); none without one. Below 1 no glass
+// exists, and a tiny one would make the index infinite.
 float readDispersion(const Node& node) {
-    return node.has("abbe") ? float(20.0 / node["abbe"].number({0.0, 1e6, true, false})) : 0.0f;
+    return node.has("abbe") ? float(20.0 / node["abbe"].number({1.0, 1e6, false, false})) : 0.0f;
 }
 
 Material readSurface(const Node& node) {

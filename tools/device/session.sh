@@ -12,6 +12,19 @@ mkdir -p "$out"
 export PHOTON_SCENES_DIR=$PWD/scenes PHOTON_TEST_DATA_DIR=$PWD/tests/data PHOTON_TEST_OUTPUT_DIR=$out
 nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.max.sm,memory.total --format=csv,noheader
 summary=()
+# sanitize TAG RUN...: each RUN (photon-render arguments) under memcheck and racecheck at 96x72 with
+# 30000 photons, logged to $out/<tool>-TAG.log, one summary line each.
+sanitize() {
+  local tag=$1 tool run
+  shift
+  for tool in memcheck racecheck; do
+    for run in "$@"; do
+      compute-sanitizer --tool $tool --error-exitcode 9 $bin/photon-render $run --backend cuda --width 96 --height 72 \
+        --photons 30000 -o "$out/sanitize.png" -q >>"$out/$tool-$tag.log" 2>&1
+      summary+=("$tool $run: exit $?")
+    done
+  done
+}
 for step in "$@"; do
   case $step in
     tests)
@@ -92,13 +105,7 @@ for step in "$@"; do
       $bin/photon-render "$sc/sky_4k.json" --backend cuda --width 1920 --height 1080 --photons 1000000 --frames 20 \
         -o "$out/sky_4k.png" --stats "$out/sky_4k.json" -q
       summary+=("sky 4096x2048: $(python3 -c "import json;d=json.load(open('$out/sky_4k.json'));print('distribution build', d['scene_stats']['environment']['distribution_build_seconds'], 's; environment photons hitting the scene', d['environment']['hit_fraction'])")")
-      for tool in memcheck racecheck; do
-        for run in "scenes/sky.json --frames 3" "scenes/bunny.obj --frames 3 --deterministic"; do
-          compute-sanitizer --tool $tool --error-exitcode 9 $bin/photon-render $run --backend cuda --width 96 --height 72 \
-            --photons 30000 -o "$out/sanitize.png" -q >>"$out/$tool-environment.log" 2>&1
-          summary+=("$tool $run: exit $?")
-        done
-      done
+      sanitize environment "scenes/sky.json --frames 3" "scenes/bunny.obj --frames 3 --deterministic"
       $bin/photon-render scenes/sky.json --backend cuda --width 960 --height 720 --photons 2000000 --time 2 \
         -o "$out/sky.png" --stats "$out/sky-stats.json" -q ;;
     render)
@@ -109,14 +116,8 @@ for step in "$@"; do
     sanitize-new)
       # The kernels of the mesh, sppm and primary-ray work: the BVH traversal, textures, emissive
       # triangles, directional light, the sppm estimates and their running mean.
-      for tool in memcheck racecheck; do
-        for run in "scenes/bunny.json --estimator sppm --frames 3" "scenes/textured.glb --estimator sppm --frames 3" \
-                   "scenes/smallpt.json --estimator sppm --frames 3 --deterministic"; do
-          compute-sanitizer --tool $tool --error-exitcode 9 $bin/photon-render $run --backend cuda --width 96 --height 72 \
-            --photons 30000 -o "$out/sanitize.png" -q >>"$out/$tool-new.log" 2>&1
-          summary+=("$tool $run: exit $?")
-        done
-      done
+      sanitize new "scenes/bunny.json --estimator sppm --frames 3" "scenes/textured.glb --estimator sppm --frames 3" \
+        "scenes/smallpt.json --estimator sppm --frames 3 --deterministic"
       compute-sanitizer --tool memcheck --error-exitcode 9 $bin/photon-bench --backends cuda --scenes mesh:20000 \
         --resolutions 96x72 --photons 20000 --frames 2 --warmup 1 --primary-rays >>"$out/memcheck-new.log" 2>&1
       summary+=("memcheck primary rays: exit $?")
@@ -184,14 +185,8 @@ for step in "$@"; do
       summary+=("reference gem: exit $?")
       $bin/photon-converge scenes/gem.json --reference "$out/ref-gem.pfm" --backend cuda --estimators sppm,progressive \
         --set photons=1000000 --window ${GEM_WINDOW:-296,290,336,316} --frames ${CONVERGE_FRAMES:-1024} --json "$out/converge-gem.json" | tee "$out/converge-gem.log"
-      for tool in memcheck racecheck; do
-        for run in "scenes/prism.json --frames 3" "scenes/gem.json --frames 3 --estimator radius" \
-                   "scenes/cornell.json --frames 2 --spectral --deterministic"; do
-          compute-sanitizer --tool $tool --error-exitcode 9 $bin/photon-render $run --backend cuda --width 96 --height 72 \
-            --photons 30000 -o "$out/sanitize.png" -q >>"$out/$tool-spectral.log" 2>&1
-          summary+=("$tool $run: exit $?")
-        done
-      done
+      sanitize spectral "scenes/prism.json --frames 3" "scenes/gem.json --frames 3 --estimator radius" \
+        "scenes/cornell.json --frames 2 --spectral --deterministic"
       for scene in prism gem; do
         $bin/photon-render scenes/$scene.json --backend cuda --width 1280 --height 800 --photons 2000000 --time 3 \
           -o "$out/picture-$scene.png" -q
