@@ -140,17 +140,24 @@ private:
                 b.cellStart[c] = sum;
                 sum += c < g.cellOffset + g.cellCount ? b.cellCounts[c] : 0u;
             }
+            // The scatter's places, each cell's then put in id order: the canonical order.
+            order_.resize(stored);
             parallelFor(stored, kGridChunk, [&](std::size_t first, std::size_t last) {
                 for (std::size_t i = first; i < last; ++i) {
-                    scatterPhoton(b, m, static_cast<std::uint32_t>(i));
+                    order_[cellPlace(b, m, static_cast<std::uint32_t>(i))] = static_cast<std::uint32_t>(i);
                 }
             });
-            Photon* photons = b.sortedPhotons + g.photonOffset;
+            const Photon* photons = b.photons + g.photonOffset;
             const std::uint32_t* start = b.cellStart + g.cellOffset;
             parallelFor(g.cellCount, kGridChunk, [&](std::size_t first, std::size_t last) {
                 for (std::size_t c = first; c < last; ++c) {
-                    std::sort(photons + start[c], photons + start[c + 1],
-                              [](const Photon& x, const Photon& y) { return x.id < y.id; });
+                    std::sort(order_.begin() + start[c], order_.begin() + start[c + 1],
+                              [&](std::uint32_t x, std::uint32_t y) { return photons[x].id < photons[y].id; });
+                }
+            });
+            parallelFor(stored, kGridChunk, [&](std::size_t first, std::size_t last) {
+                for (std::size_t place = first; place < last; ++place) {
+                    placePhoton(b, m, static_cast<std::uint32_t>(place), order_[place]);
                 }
             });
         }
@@ -186,6 +193,7 @@ private:
     Bindings bindings_{};
     std::size_t pixels_ = 0;
     FrameResult result_;  // of the frame in flight
+    std::vector<std::uint32_t> order_;  // the grid build's photon order, for one map
 };
 
 }  // namespace

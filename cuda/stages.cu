@@ -55,9 +55,8 @@ __global__ void sortKeysKernel(Bindings b, uint map, uint n, std::uint64_t* keys
 }
 
 __global__ void placeSortedKernel(Bindings b, uint map, uint n, const uint* order) {
-    uint offset = b.params.grids[map].photonOffset;
     for (uint i = blockIdx.x * blockDim.x + threadIdx.x; i < n; i += gridDim.x * blockDim.x) {
-        b.sortedPhotons[offset + i] = b.photons[offset + order[i]];
+        placePhoton(b, map, i, order[i]);
     }
 }
 

@@ -13,6 +13,7 @@
 #include "../shared/intersect.h"
 #include "../shared/layout.h"
 #include "../shared/light_types.h"
+#include "../shared/map_photon.h"
 #include "../shared/lights.h"
 #include "../shared/material.h"
 #include "../shared/math.h"

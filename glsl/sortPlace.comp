@@ -5,13 +5,13 @@
 #include "shared/bindings.h"
 #include "glsl/dispatch.h"
 #include "glsl/sort.h"
+#include "shared/photon_map.h"
 
 layout(local_size_x = GROUP_SIZE) in;
 
 void main() {
     uint i = invocationIndex();
     if (i < sortState[SORT_STATE_COUNT]) {
-        uint offset = params.grids[push.map].photonOffset;
-        sortedPhotons[offset + i] = photons[offset + sortValues[push.source + i]];
+        placePhoton(push.map, i, sortValues[push.source + i]);
     }
 }

@@ -23,7 +23,8 @@ void main() {
     if (i >= storedPhotons(push.map)) {
         return;
     }
-    Photon photon = sortedPhotons[params.grids[push.map].photonOffset + i];
+    GridParams grid = params.grids[push.map];
+    Photon photon = decodeMapPhoton(sortedPhotons[grid.photonOffset + i], grid);
     vec3 screen = projectToPixel(params.camera, photon.position, params.width, params.height);
     if (screen.z <= 0.0f || screen.x < 0.0f || screen.y < 0.0f || screen.x >= float(params.width) ||
         screen.y >= float(params.height)) {

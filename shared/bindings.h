@@ -32,7 +32,7 @@
     X(PRIMITIVE_REFS, 13u, uint, primitiveRefs, RO, SCENE)                     \
     X(PHOTONS, 14u, Photon, photons, RW, PHOTON)                               \
     X(PHOTON_KEYS, 15u, uint, photonKeys, RW, PHOTON)                          \
-    X(SORTED_PHOTONS, 16u, Photon, sortedPhotons, MAPS, PHOTON)                \
+    X(SORTED_PHOTONS, 16u, MapPhoton, sortedPhotons, MAPS, PHOTON)             \
     X(CELL_COUNTS, 17u, uint, cellCounts, RW, CELL)                            \
     X(CELL_START, 18u, uint, cellStart, MAPS, CELL)                            \
     X(COUNTERS, 19u, uint, counters, RW, COUNTER)                              \

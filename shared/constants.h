@@ -155,6 +155,7 @@ PH_CONST uint FLAG_SPECTRAL = 8u;        // paths carry the frame's three wavele
 PH_CONST uint STREAM_PHOTON = 0x1b873593u;
 PH_CONST uint STREAM_CAMERA = 0xcc9e2d51u;
 PH_CONST uint STREAM_GATHER = 0x85ebca6bu;
+PH_CONST uint STREAM_MAP_PHOTON = 0xe6546b64u;  // the rounding of powers into the maps (map_photon.h)
 
 // A stored photon's identity: its path and the bounce at which it was stored, (path << 6) | bounce.
 // Unique within a map, and the same on every backend, so it gives each cell a canonical order.

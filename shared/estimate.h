@@ -14,6 +14,7 @@
 #include "bindings.h"
 #include "bsdf.h"
 #include "grid.h"
+#include "map_photon.h"
 #include "spectral.h"
 
 PH_NAMESPACE_BEGIN
@@ -112,7 +113,7 @@ PH_FN vec3 discExtent(vec3 n, float r, float t) {
     return r * sqrt(max(vec3(1.0f) - n2, vec3(0.0f))) + t * abs(n);
 }
 
-PH_FN Photon loadMapPhoton(BUF_PARAM uint i) { return BUF(sortedPhotons)[i]; }
+PH_FN Photon loadMapPhoton(BUF_PARAM PH_IN(GridParams) grid, uint i) { return decodeMapPhoton(BUF(sortedPhotons)[i], grid); }
 
 // Walks the cells that a box (x ± extent) overlaps. A query whose radius fits a hashed grid's cell
 // (every estimator but sppm: cells of edge at least r) visits at most 3 cells per axis, whose
@@ -229,7 +230,7 @@ PH_FN vec4 radiusQuery(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float
             i = subsampleStart(begin, stride, u);
             continue;
         }
-        Photon p = loadMapPhoton(BUF_ARG i);
+        Photon p = loadMapPhoton(BUF_ARG grid, i);
         if (inVisitedCell(q, grid, p.position)) {
             addRadiusContribution(BUF_ARG cellSum, s, p, r2, invR2, thickness, kernel, count);
         }
@@ -254,7 +255,7 @@ PH_FN vec3 estimateCell(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, floa
     uint stride = subsampleStride(end - begin, BUF(params).gatherBudget);
     vec3 sum = vec3(0.0f);
     for (uint i = subsampleStart(begin, stride, u); i < end; i += stride) {
-        Photon p = loadMapPhoton(BUF_ARG i);
+        Photon p = loadMapPhoton(BUF_ARG grid, i);
         if (grid.kind == GRID_BOUNDED || all(equal(cellOf(p.position, grid), cell))) {
             sum += photonReflectance(BUF_ARG s, p.incoming) * p.power;
         }
@@ -285,7 +286,7 @@ PH_FN vec3 estimateKnn(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float
         cellRange(BUF_ARG grid, key, begin, end);
         uint stride = subsampleStride(end - begin, budget);
         for (uint i = subsampleStart(begin, stride, u); i < end; i += stride) {
-            Photon p = loadMapPhoton(BUF_ARG i);
+            Photon p = loadMapPhoton(BUF_ARG grid, i);
             vec3 d = p.position - s.position;
             float d2 = dot(d, d);
             if (d2 >= maxR2 || (count == k && d2 >= heapDistance[0]) || abs(dot(d, s.geometricNormal)) > thickness) {
@@ -333,7 +334,7 @@ PH_FN vec3 estimateKnn(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float
     float r2 = count == k ? heapDistance[0] : maxR2;
     vec3 sum = vec3(0.0f);
     for (uint j = 0u; j < count; ++j) {
-        Photon p = loadMapPhoton(BUF_ARG heapPhoton[j]);
+        Photon p = loadMapPhoton(BUF_ARG grid, heapPhoton[j]);
         // The stride of the photon's cell, as the search above found it (its cell's bucket).
         uint begin;
         uint end;

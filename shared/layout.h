@@ -187,9 +187,18 @@ struct PH_ALIGN16 FrameParams {
 
 // ---- Photon maps ------------------------------------------------------------------------------
 
+// A photon as the photon pass records it.
 struct PH_ALIGN16 Photon {
     vec3 position; uint incoming;  // octahedral-encoded unit direction towards where it came from
     vec3 power; uint id;           // flux [W]; (path << PHOTON_BOUNCE_BITS) | bounce, see photonId()
+};
+
+// A photon as the maps keep it for the estimates, in half the bytes (map_photon.h).
+struct PH_ALIGN16 MapPhoton {
+    uint x; uint y; uint z;
+    // high 24 bits: the position's coordinate relative to the grid's origin, a float rounded to 15
+    // mantissa bits; low 8 bits: one byte each of the 24-bit octahedral incoming direction
+    uint power;  // Ward's RGBE: three 8-bit mantissas and a shared exponent in the top byte
 };
 
 // ---- Eye pass ---------------------------------------------------------------------------------
@@ -268,6 +277,7 @@ PH_SIZE(SppmPixel, 16 + MAP_COUNT * 16 + 4 * SPPM_COUNT_SLOTS); PH_OFFSET(SppmPi
 PH_OFFSET(SppmPixel, count, 16 + MAP_COUNT * 16);
 static_assert(MAP_COUNT <= SPPM_COUNT_SLOTS, "SppmPixel::count holds a slot per map");
 PH_SIZE(Photon, 32); PH_OFFSET(Photon, incoming, 12); PH_OFFSET(Photon, power, 16); PH_OFFSET(Photon, id, 28);
+PH_SIZE(MapPhoton, 16); PH_OFFSET(MapPhoton, power, 12);
 PH_SIZE(HitPoint, 80); PH_OFFSET(HitPoint, metallic, 64); PH_OFFSET(HitPoint, channel, 72); PH_OFFSET(HitPoint, roughness, 68); PH_OFFSET(HitPoint, material, 12); PH_OFFSET(HitPoint, weight, 16);
 PH_OFFSET(HitPoint, normal, 28); PH_OFFSET(HitPoint, direct, 32); PH_OFFSET(HitPoint, outgoing, 44);
 PH_OFFSET(HitPoint, albedo, 48); PH_OFFSET(HitPoint, geometricNormal, 60);

@@ -3,7 +3,8 @@
 //   count    one invocation per stored photon: its cell key, and photons per cell (an atomic add);
 //   scan     the backend's own exclusive prefix sum of the counts into cellStart;
 //   scatter  one invocation per stored photon: a free place in its cell, handed out by counting the
-//            cell's count back down, which also leaves the counts at zero for the next frame.
+//            cell's count back down, which also leaves the counts at zero for the next frame; the
+//            photon goes there in the maps' 16-byte form (map_photon.h).
 // The scatter's places follow atomic timing, so a cell's photons may come in any order. The
 // canonical order is by photon id within each cell (the order of a serial trace: path by path,
 // bounce by bounce): the CPU backend builds it, and the GPU backends build it when asked to be
@@ -15,6 +16,7 @@
 
 #include "bindings.h"
 #include "grid.h"
+#include "map_photon.h"
 
 PH_NAMESPACE_BEGIN
 
@@ -23,23 +25,36 @@ PH_FN uint storedPhotons(BUF_PARAM uint map) {
     return min(BUF(counters)[COUNTER_STORED + map], BUF(params).grids[map].photonCapacity);
 }
 
+// Photon p of this frame as map `map` keeps it (map_photon.h).
+PH_FN MapPhoton mapPhoton(BUF_PARAM uint map, PH_IN(Photon) p) {
+    return encodeMapPhoton(p, BUF(params).grids[map], BUF(params).frameIndex, BUF(params).seed);
+}
+
 #ifndef PH_PHOTON_MAPS_READONLY  // shaders that only read the maps declare them read-only
 
 // Count step, for stored photon i of map `map`.
 PH_FN void countPhotonCell(BUF_PARAM uint map, uint i) {
     uint photonOffset = BUF(params).grids[map].photonOffset;
-    uint key = photonCellKey(BUF(photons)[photonOffset + i].position, BUF(params).grids[map]);
+    uint key = photonCellKey(mapPosition(BUF(photons)[photonOffset + i].position, BUF(params).grids[map]),
+                             BUF(params).grids[map]);
     BUF(photonKeys)[photonOffset + i] = key;
     PH_ATOMIC_ADD(BUF(cellCounts)[BUF(params).grids[map].cellOffset + key], 1u);
 }
 
-// Scatter step, for stored photon i of map `map` (after the scan).
-PH_FN void scatterPhoton(BUF_PARAM uint map, uint i) {
+// Stored photon i of map `map`, in the map's form, at `place` of the map.
+PH_FN void placePhoton(BUF_PARAM uint map, uint place, uint i) {
     uint photonOffset = BUF(params).grids[map].photonOffset;
-    uint cell = BUF(params).grids[map].cellOffset + BUF(photonKeys)[photonOffset + i];
-    uint place = BUF(cellStart)[cell] + PH_ATOMIC_ADD(BUF(cellCounts)[cell], 0xffffffffu) - 1u;
-    BUF(sortedPhotons)[photonOffset + place] = BUF(photons)[photonOffset + i];
+    BUF(sortedPhotons)[photonOffset + place] = mapPhoton(BUF_ARG map, BUF(photons)[photonOffset + i]);
 }
+
+// A free place in the cell of stored photon i of map `map` (after the scan).
+PH_FN uint cellPlace(BUF_PARAM uint map, uint i) {
+    uint cell = BUF(params).grids[map].cellOffset + BUF(photonKeys)[BUF(params).grids[map].photonOffset + i];
+    return BUF(cellStart)[cell] + PH_ATOMIC_ADD(BUF(cellCounts)[cell], 0xffffffffu) - 1u;
+}
+
+// Scatter step, for stored photon i of map `map`.
+PH_FN void scatterPhoton(BUF_PARAM uint map, uint i) { placePhoton(BUF_ARG map, cellPlace(BUF_ARG map, i), i); }
 
 #endif
 

@@ -83,10 +83,10 @@ inline void expectRefused(Backend& backend, const std::string& accepted, const c
 }
 
 // Each cell's photons as raw bytes, sorted, so that append order does not matter.
-inline std::vector<std::string> cellContents(const std::vector<Photon>& photons, std::uint32_t begin, std::uint32_t end) {
+inline std::vector<std::string> cellContents(const std::vector<MapPhoton>& photons, std::uint32_t begin, std::uint32_t end) {
     std::vector<std::string> out;
     for (std::uint32_t i = begin; i < end; ++i) {
-        out.emplace_back(reinterpret_cast<const char*>(&photons[i]), sizeof(Photon));
+        out.emplace_back(reinterpret_cast<const char*>(&photons[i]), sizeof(MapPhoton));
     }
     std::sort(out.begin(), out.end());
     return out;
@@ -96,14 +96,14 @@ inline std::vector<std::string> cellContents(const std::vector<Photon>& photons,
 inline void expectSamePhotonMaps(const PhotonMaps& actual, const PhotonMaps& expected) {
     for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
         SCOPED_TRACE(m == MAP_GLOBAL ? "global map" : "caustic map");
-        ASSERT_EQ(actual.photons[m].size(), expected.photons[m].size());
+        ASSERT_EQ(actual.stored[m].size(), expected.stored[m].size());
         ASSERT_EQ(actual.cellStart[m].size(), expected.cellStart[m].size());
         ASSERT_TRUE(actual.cellStart[m] == expected.cellStart[m]) << "cell ranges differ";
         std::size_t differing = 0;
         for (std::size_t c = 0; c + 1 < expected.cellStart[m].size(); ++c) {
             std::uint32_t begin = expected.cellStart[m][c];
             std::uint32_t end = expected.cellStart[m][c + 1];
-            if (begin != end && cellContents(actual.photons[m], begin, end) != cellContents(expected.photons[m], begin, end)) {
+            if (begin != end && cellContents(actual.stored[m], begin, end) != cellContents(expected.stored[m], begin, end)) {
                 differing += 1;
             }
         }
@@ -115,11 +115,11 @@ inline void expectSamePhotonMaps(const PhotonMaps& actual, const PhotonMaps& exp
 inline void expectIdenticalPhotonMaps(const PhotonMaps& actual, const PhotonMaps& expected) {
     for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
         SCOPED_TRACE(m == MAP_GLOBAL ? "global map" : "caustic map");
-        ASSERT_EQ(actual.photons[m].size(), expected.photons[m].size());
+        ASSERT_EQ(actual.stored[m].size(), expected.stored[m].size());
         ASSERT_TRUE(actual.cellStart[m] == expected.cellStart[m]) << "cell ranges differ";
         std::size_t differing = 0;
-        for (std::size_t i = 0; i < actual.photons[m].size(); ++i) {
-            differing += std::memcmp(&actual.photons[m][i], &expected.photons[m][i], sizeof(Photon)) != 0 ? 1 : 0;
+        for (std::size_t i = 0; i < actual.stored[m].size(); ++i) {
+            differing += std::memcmp(&actual.stored[m][i], &expected.stored[m][i], sizeof(MapPhoton)) != 0 ? 1 : 0;
         }
         EXPECT_EQ(differing, 0u) << "photons not in the same place";
     }

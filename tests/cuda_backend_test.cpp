@@ -122,8 +122,8 @@ TEST_F(CudaVsCpu, TooLargeRequestsAreRefusedBeforeWork) {
     auto cuda = createBackend("cuda");
     MemoryLimits limits = cuda->memoryLimits();
     RenderSettings s = test::roomFor64PhotonsPerPath(scene.render);
-    // Photon buffers alone: two Photon arrays and a key per stored photon.
-    double perPath = 64.0 * (2.0 * sizeof(Photon) + sizeof(std::uint32_t));
+    // Photon buffers alone: the photon pass's records, the maps and a key per stored photon.
+    double perPath = 64.0 * (sizeof(Photon) + sizeof(MapPhoton) + sizeof(std::uint32_t));
     double paths = std::ceil(1.5 * double(limits.total) / perPath);
     if (paths > double(PHOTON_PATHS_MAX)) {
         GTEST_SKIP() << limits.device << " has more memory than the largest request can use";

@@ -70,6 +70,7 @@ const Member kMembers[] = {
     PH_MEMBER(SppmMapParams, firstRadius), PH_MEMBER(SppmMapParams, firstFootprints), PH_MEMBER(SppmMapParams, batches),
     PH_MEMBER(SppmMapParams, firstNeighbours),
     PH_MEMBER(Photon, position), PH_MEMBER(Photon, incoming), PH_MEMBER(Photon, power), PH_MEMBER(Photon, id),
+    PH_MEMBER(MapPhoton, x), PH_MEMBER(MapPhoton, z), PH_MEMBER(MapPhoton, power),
     PH_MEMBER(HitPoint, position), PH_MEMBER(HitPoint, material), PH_MEMBER(HitPoint, weight),
     PH_MEMBER(HitPoint, normal), PH_MEMBER(HitPoint, direct), PH_MEMBER(HitPoint, outgoing),
     PH_MEMBER(HitPoint, albedo), PH_MEMBER(HitPoint, geometricNormal), PH_MEMBER(HitPoint, metallic),

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "core/settings/setting_specs.h"
+#include "shared/map_photon.h"
 #include "core/system/error.h"
 
 namespace photon {
@@ -220,10 +221,14 @@ PhotonMaps Backend::readPhotonMaps() {
     for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
         const GridParams& grid = params_.grids[m];
         std::uint32_t stored = std::min(stats_.stored[m], grid.photonCapacity);
-        maps.photons[m].resize(stored);
+        maps.stored[m].resize(stored);
         if (stored > 0) {
-            readBuffer(BINDING_SORTED_PHOTONS, std::uint64_t(grid.photonOffset) * sizeof(Photon),
-                       std::uint64_t(stored) * sizeof(Photon), maps.photons[m].data());
+            readBuffer(BINDING_SORTED_PHOTONS, std::uint64_t(grid.photonOffset) * sizeof(MapPhoton),
+                       std::uint64_t(stored) * sizeof(MapPhoton), maps.stored[m].data());
+        }
+        maps.photons[m].reserve(stored);
+        for (const MapPhoton& p : maps.stored[m]) {
+            maps.photons[m].push_back(decodeMapPhoton(p, grid));
         }
         maps.cellStart[m].resize(std::size_t(grid.cellCount) + 1);
         readBuffer(BINDING_CELL_START, std::uint64_t(grid.cellOffset) * sizeof(std::uint32_t),

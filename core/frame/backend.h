@@ -78,9 +78,11 @@ private:
     }
 };
 
-// A readback of both photon maps: each map's photons in cell order, and its cell ranges
-// (cellStart has cells + 1 entries and indexes that map's photons).
+// A readback of both photon maps: each map's photons in cell order, as the maps keep them and
+// decoded (without ids, which the maps do not keep), and its cell ranges (cellStart has cells + 1
+// entries and indexes that map's photons).
 struct PhotonMaps {
+    std::vector<MapPhoton> stored[MAP_COUNT];
     std::vector<Photon> photons[MAP_COUNT];
     std::vector<std::uint32_t> cellStart[MAP_COUNT];
 };

@@ -3,7 +3,7 @@
 # the checkouts) from the project root, with the
 # binaries of `cmake --preset device && cmake --build --preset device` carried in build-device/bin
 # and .devlibs/ prepared by tools/device/prepare.sh. Writes logs and JSON under $OUT.
-#   tools/device/session.sh tests sanitize sanitize-new environment frames meshes converge spectral pictures bundle-all
+#   tools/device/session.sh tests sanitize sanitize-new environment frames meshes converge spectral compact pictures bundle-all
 set -uo pipefail
 source .devlibs/setup.sh >/dev/null
 bin=build-device/bin
@@ -192,6 +192,30 @@ for step in "$@"; do
           -o "$out/picture-$scene.png" -q
         summary+=("picture $scene: exit $?")
       done ;;
+    compact)
+      # Issue 21 item 3: the maps' 16-byte photon against the 32-byte one of before (photon-bench-old,
+      # commit 4246152, carried beside the build), side by side: the Cornell box in both modes and
+      # each radius estimator, photon counts 1M..16M, the bunny; then converged Cornell images of
+      # both builds, compared with each other and, for the noise between two seeds, old with old.
+      for b in photon-bench-old photon-bench; do
+        echo "== $b" | tee -a "$out/compact.log"
+        $bin/$b --backends cuda,vulkan --resolutions 1920x1080,3840x2160 --photons 1000000 --frames 50 \
+          --vary estimator=sppm,progressive,knn 2>&1 | grep -v "first image" | tee -a "$out/compact.log"
+        $bin/$b --backends cuda --resolutions 1920x1080 --photons 1000000,4000000,16000000 --frames 30 \
+          --vary spectral=false,true 2>&1 | grep -v "first image" | tee -a "$out/compact.log"
+        $bin/$b --scenes-dir scenes --backends cuda,vulkan --scenes bunny,gem --resolutions 1920x1080 --photons 1000000 \
+          --frames 50 2>&1 | grep -v "first image" | tee -a "$out/compact.log"
+      done
+      for b in photon-render-old:1 photon-render-old:2 photon-render:1; do
+        $bin/${b%:*} scenes/cornell.json --backend cuda --width 320 --height 240 --frames 1024 --photons 2000000 \
+          --seed ${b#*:} -o "$out/compact-${b%:*}-${b#*:}.pfm" -q
+        summary+=("$b: exit $?")
+      done
+      for pair in "photon-render-old-2 photon-render-old-1" "photon-render-1 photon-render-old-1" "photon-render-1 photon-render-old-2"; do
+        read -r a r <<<"$pair"
+        summary+=("$a vs $r: $($bin/photon-converge --compare "$out/compact-$a.pfm" --reference "$out/compact-$r.pfm" 2>&1 | tail -1)")
+      done
+      sanitize compact scenes/cornell.json "scenes/cornell.json --deterministic" scenes/gem.json "scenes/caustic.json --estimator knn" ;;
     pictures)
       for scene in bunny.json textured.glb smallpt.json; do
         $bin/photon-render scenes/$scene --backend cuda --width 1280 --height 960 --photons 2000000 --time 3 \
