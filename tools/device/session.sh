@@ -214,7 +214,8 @@ for step in "$@"; do
       for pair in "photon-render-old-2 photon-render-old-1" "photon-render-1 photon-render-old-1" "photon-render-1 photon-render-old-2"; do
         read -r a r <<<"$pair"
         summary+=("$a vs $r: $($bin/photon-converge --compare "$out/compact-$a.pfm" --reference "$out/compact-$r.pfm" 2>&1 | tail -1)")
-      done
+      done ;;
+    sanitize-compact)
       sanitize compact scenes/cornell.json "scenes/cornell.json --deterministic" scenes/gem.json "scenes/caustic.json --estimator knn" ;;
     pictures)
       for scene in bunny.json textured.glb smallpt.json; do
