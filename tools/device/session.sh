@@ -215,6 +215,15 @@ for step in "$@"; do
         read -r a r <<<"$pair"
         summary+=("$a vs $r: $($bin/photon-converge --compare "$out/compact-$a.pfm" --reference "$out/compact-$r.pfm" 2>&1 | tail -1)")
       done ;;
+    table)
+      # The README's benchmark table: the default frame at both sizes, the progressive frame at the
+      # radii the table names, the bunny and the 1M-triangle mesh, with the primary-ray rate.
+      $bin/photon-bench --backends cuda,vulkan --resolutions 1920x1080,3840x2160 --photons 1000000 --frames 50 \
+        --json "$out/table-cornell.json" 2>&1 | grep -v "first image" | tee "$out/table.log"
+      $bin/photon-bench --backends cuda --resolutions 1920x1080 --photons 1000000 --frames 50 --estimator progressive \
+        --vary radius=0.04 --vary caustic_radius=0.02 2>&1 | grep -v "first image" | tee -a "$out/table.log"
+      $bin/photon-bench --scenes-dir scenes --backends cuda,vulkan --scenes bunny,mesh:1000000 --resolutions 1920x1080 \
+        --photons 1000000 --frames 50 --primary-rays 2>&1 | grep -v "first image" | tee -a "$out/table.log" ;;
     sanitize-compact)
       sanitize compact scenes/cornell.json "scenes/cornell.json --deterministic" scenes/gem.json "scenes/caustic.json --estimator knn" ;;
     pictures)
