@@ -140,24 +140,24 @@ private:
                 b.cellStart[c] = sum;
                 sum += c < g.cellOffset + g.cellCount ? b.cellCounts[c] : 0u;
             }
-            // The scatter's places, each cell's then put in id order: the canonical order.
+            // The scatter's places hold (id, photon) pairs, each cell's then put in id order: the
+            // canonical order.
             order_.resize(stored);
+            const Photon* photons = b.photons + g.photonOffset;
             parallelFor(stored, kGridChunk, [&](std::size_t first, std::size_t last) {
                 for (std::size_t i = first; i < last; ++i) {
-                    order_[cellPlace(b, m, static_cast<std::uint32_t>(i))] = static_cast<std::uint32_t>(i);
+                    order_[cellPlace(b, m, static_cast<std::uint32_t>(i))] = (std::uint64_t(photons[i].id) << 32) | i;
                 }
             });
-            const Photon* photons = b.photons + g.photonOffset;
             const std::uint32_t* start = b.cellStart + g.cellOffset;
             parallelFor(g.cellCount, kGridChunk, [&](std::size_t first, std::size_t last) {
                 for (std::size_t c = first; c < last; ++c) {
-                    std::sort(order_.begin() + start[c], order_.begin() + start[c + 1],
-                              [&](std::uint32_t x, std::uint32_t y) { return photons[x].id < photons[y].id; });
+                    std::sort(order_.begin() + start[c], order_.begin() + start[c + 1]);
                 }
             });
             parallelFor(stored, kGridChunk, [&](std::size_t first, std::size_t last) {
                 for (std::size_t place = first; place < last; ++place) {
-                    placePhoton(b, m, static_cast<std::uint32_t>(place), order_[place]);
+                    placePhoton(b, m, static_cast<std::uint32_t>(place), static_cast<std::uint32_t>(order_[place]));
                 }
             });
         }
@@ -193,7 +193,7 @@ private:
     Bindings bindings_{};
     std::size_t pixels_ = 0;
     FrameResult result_;  // of the frame in flight
-    std::vector<std::uint32_t> order_;  // the grid build's photon order, for one map
+    std::vector<std::uint64_t> order_;  // the grid build's (id, photon) order, for one map
 };
 
 }  // namespace

@@ -113,7 +113,7 @@ PH_FN vec3 discExtent(vec3 n, float r, float t) {
     return r * sqrt(max(vec3(1.0f) - n2, vec3(0.0f))) + t * abs(n);
 }
 
-PH_FN Photon loadMapPhoton(BUF_PARAM PH_IN(GridParams) grid, uint i) { return decodeMapPhoton(BUF(sortedPhotons)[i], grid); }
+PH_FN MapPhoton loadMapPhoton(BUF_PARAM uint i) { return BUF(sortedPhotons)[i]; }
 
 // Walks the cells that a box (x ± extent) overlaps. A query whose radius fits a hashed grid's cell
 // (every estimator but sppm: cells of edge at least r) visits at most 3 cells per axis, whose
@@ -144,8 +144,8 @@ PH_FN CellQuery beginCellQuery(vec3 x, vec3 extent, float radius, PH_IN(GridPara
 
 // Whether a photon found through the visited cell's bucket lies in that cell (always, unless the
 // query is filtered).
-PH_FN bool inVisitedCell(PH_IN(CellQuery) q, PH_IN(GridParams) grid, vec3 position) {
-    return !q.filtered || all(equal(cellOf(position, grid), q.cell));
+PH_FN bool inVisitedCell(PH_IN(CellQuery) q, PH_IN(GridParams) grid, PH_IN(MapPhoton) p) {
+    return !q.filtered || all(equal(cellOf(mapPhotonPosition(p, grid), grid), q.cell));
 }
 
 PH_FN bool nextCell(PH_INOUT(CellQuery) q, PH_IN(GridParams) grid, PH_OUT(uint) key) {
@@ -185,14 +185,16 @@ PH_FN uint subsampleStride(uint count, uint budget) {
 PH_FN uint subsampleStart(uint begin, uint stride, float u) { return begin + min(uint(u * float(stride)), stride - 1u); }
 
 // Adds one photon's share to a radius query at s if it lies in the disc: its kernel-weighted
-// reflected flux to sum.xyz, and 1 to sum.w. (Adding in place, not returning zero for the many
-// photons outside: x + 0 is not free under IEEE rules.)
-PH_FN void addRadiusContribution(BUF_PARAM PH_INOUT(vec4) sum, PH_IN(Shading) s, PH_IN(Photon) p, float r2, float invR2,
-                                 float thickness, uint kernel, bool count) {
-    vec3 d = p.position - s.position;
+// reflected flux to sum.xyz, and 1 to sum.w. `x`: s.position relative to the grid's origin, as
+// the maps keep positions. (Adding in place, not returning zero for the many photons outside:
+// x + 0 is not free under IEEE rules.)
+PH_FN void addRadiusContribution(BUF_PARAM PH_INOUT(vec4) sum, PH_IN(Shading) s, vec3 x, PH_IN(MapPhoton) p, float r2,
+                                 float invR2, float thickness, uint kernel, bool count) {
+    vec3 d = mapPhotonOffset(p) - x;
     float d2 = dot(d, d);
     if (d2 < r2 && abs(dot(d, s.geometricNormal)) <= thickness) {
-        sum += vec4(photonReflectance(BUF_ARG s, p.incoming) * p.power * kernelProfile(kernel, d2 * invR2), count ? 1.0f : 0.0f);
+        sum += vec4(photonReflectance(BUF_ARG s, mapPhotonIncoming(p)) * mapPhotonPower(p) * kernelProfile(kernel, d2 * invR2),
+                    count ? 1.0f : 0.0f);
     }
 }
 
@@ -210,6 +212,7 @@ PH_FN vec4 radiusQuery(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float
     float invR2 = 1.0f / r2;
     float thickness = DISC_THICKNESS * radius;
     uint budget = BUF(params).gatherBudget;
+    vec3 x = s.position - grid.origin;
     vec4 sum = vec4(0.0f);
     vec4 cellSum = vec4(0.0f);
     CellQuery q = beginCellQuery(s.position, discExtent(s.geometricNormal, radius, thickness), radius, grid);
@@ -230,9 +233,9 @@ PH_FN vec4 radiusQuery(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float
             i = subsampleStart(begin, stride, u);
             continue;
         }
-        Photon p = loadMapPhoton(BUF_ARG grid, i);
-        if (inVisitedCell(q, grid, p.position)) {
-            addRadiusContribution(BUF_ARG cellSum, s, p, r2, invR2, thickness, kernel, count);
+        MapPhoton p = loadMapPhoton(BUF_ARG i);
+        if (inVisitedCell(q, grid, p)) {
+            addRadiusContribution(BUF_ARG cellSum, s, x, p, r2, invR2, thickness, kernel, count);
         }
         i += stride;
     }
@@ -255,9 +258,9 @@ PH_FN vec3 estimateCell(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, floa
     uint stride = subsampleStride(end - begin, BUF(params).gatherBudget);
     vec3 sum = vec3(0.0f);
     for (uint i = subsampleStart(begin, stride, u); i < end; i += stride) {
-        Photon p = loadMapPhoton(BUF_ARG grid, i);
-        if (grid.kind == GRID_BOUNDED || all(equal(cellOf(p.position, grid), cell))) {
-            sum += photonReflectance(BUF_ARG s, p.incoming) * p.power;
+        MapPhoton p = loadMapPhoton(BUF_ARG i);
+        if (grid.kind == GRID_BOUNDED || all(equal(cellOf(mapPhotonPosition(p, grid), grid), cell))) {
+            sum += photonReflectance(BUF_ARG s, mapPhotonIncoming(p)) * mapPhotonPower(p);
         }
     }
     return sum * float(stride) * estimateScale(s) / (grid.cellSize * grid.cellSize);
@@ -276,6 +279,7 @@ PH_FN vec3 estimateKnn(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float
     uint heapPhoton[KNN_MAX];
     uint count = 0u;
     float maxR2 = maxRadius * maxRadius;
+    vec3 x = s.position - grid.origin;  // as the maps keep positions
     float thickness = DISC_THICKNESS * maxRadius;
     CellQuery q = beginCellQuery(s.position, discExtent(s.geometricNormal, maxRadius, thickness), maxRadius, grid);
     uint budget = BUF(params).gatherBudget;
@@ -286,13 +290,13 @@ PH_FN vec3 estimateKnn(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float
         cellRange(BUF_ARG grid, key, begin, end);
         uint stride = subsampleStride(end - begin, budget);
         for (uint i = subsampleStart(begin, stride, u); i < end; i += stride) {
-            Photon p = loadMapPhoton(BUF_ARG grid, i);
-            vec3 d = p.position - s.position;
+            MapPhoton p = loadMapPhoton(BUF_ARG i);
+            vec3 d = mapPhotonOffset(p) - x;
             float d2 = dot(d, d);
             if (d2 >= maxR2 || (count == k && d2 >= heapDistance[0]) || abs(dot(d, s.geometricNormal)) > thickness) {
                 continue;
             }
-            if (isBlack(photonReflectance(BUF_ARG s, p.incoming))) {
+            if (isBlack(photonReflectance(BUF_ARG s, mapPhotonIncoming(p)))) {
                 continue;
             }
             uint slot;
@@ -334,13 +338,14 @@ PH_FN vec3 estimateKnn(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float
     float r2 = count == k ? heapDistance[0] : maxR2;
     vec3 sum = vec3(0.0f);
     for (uint j = 0u; j < count; ++j) {
-        Photon p = loadMapPhoton(BUF_ARG grid, heapPhoton[j]);
+        MapPhoton p = loadMapPhoton(BUF_ARG heapPhoton[j]);
         // The stride of the photon's cell, as the search above found it (its cell's bucket).
         uint begin;
         uint end;
-        cellRange(BUF_ARG grid, photonCellKey(p.position, grid), begin, end);
+        cellRange(BUF_ARG grid, photonCellKey(mapPhotonPosition(p, grid), grid), begin, end);
         float weight = float(subsampleStride(end - begin, budget));
-        sum += photonReflectance(BUF_ARG s, p.incoming) * p.power * (weight * kernelProfile(kernel, heapDistance[j] / r2));
+        sum += photonReflectance(BUF_ARG s, mapPhotonIncoming(p)) * mapPhotonPower(p) *
+               (weight * kernelProfile(kernel, heapDistance[j] / r2));
     }
     return sum * estimateScale(s) * (kernelNorm(kernel) / (PI * r2));
 }

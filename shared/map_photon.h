@@ -90,12 +90,27 @@ PH_FN MapPhoton encodeMapPhoton(PH_IN(Photon) p, PH_IN(GridParams) grid, uint fr
     return q;
 }
 
-// What the estimates read of a map photon: a Photon whose id the maps do not keep (0).
+// What the estimates read of a map photon, each part apart, so that a query decodes only what it
+// needs: most photons it visits lie outside its disc and need no more than their offset.
+PH_FN vec3 mapPhotonOffset(PH_IN(MapPhoton) q) {
+    return vec3(uintBitsToFloat(q.x & MAP_POSITION_MASK), uintBitsToFloat(q.y & MAP_POSITION_MASK),
+                uintBitsToFloat(q.z & MAP_POSITION_MASK));
+}
+
+PH_FN vec3 mapPhotonPosition(PH_IN(MapPhoton) q, PH_IN(GridParams) grid) { return mapPositionFromBits(q.x, q.y, q.z, grid); }
+
+PH_FN uint mapPhotonIncoming(PH_IN(MapPhoton) q) {
+    return octCode32((q.x & 0xffu) | ((q.y & 0xffu) << 8u) | ((q.z & 0xffu) << 16u));
+}
+
+PH_FN vec3 mapPhotonPower(PH_IN(MapPhoton) q) { return decodePhotonPower(q.power); }
+
+// All of a map photon, as a Photon whose id the maps do not keep (0).
 PH_FN Photon decodeMapPhoton(PH_IN(MapPhoton) q, PH_IN(GridParams) grid) {
     Photon p;
-    p.position = mapPositionFromBits(q.x, q.y, q.z, grid);
-    p.incoming = octCode32((q.x & 0xffu) | ((q.y & 0xffu) << 8u) | ((q.z & 0xffu) << 16u));
-    p.power = decodePhotonPower(q.power);
+    p.position = mapPhotonPosition(q, grid);
+    p.incoming = mapPhotonIncoming(q);
+    p.power = mapPhotonPower(q);
     p.id = 0u;
     return p;
 }

@@ -252,13 +252,16 @@ TEST(CellQuery, WiderQueriesAreFilteredToTheVisitedCell) {
     CellQuery q = beginCellQuery(x, vec3(r), r, g);
     EXPECT_TRUE(q.filtered);
     vec3 photon(0.31f, -0.22f, 0.12f);
+    Photon record{};
+    record.position = photon;
+    MapPhoton stored = encodeMapPhoton(record, g, 0u, 0u);
     ivec3 own = cellOf(photon, g);
     int found = 0;
     int cells = 0;
     std::uint32_t key;
     while (nextCell(q, g, key)) {
         cells += 1;
-        if (key == photonCellKey(photon, g) && inVisitedCell(q, g, photon)) {
+        if (key == photonCellKey(photon, g) && inVisitedCell(q, g, stored)) {
             found += 1;
             EXPECT_EQ(q.cell, own);
         }
