@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <fstream>
 #include <functional>
+#include <optional>
 #include <sstream>
 
 #include <CLI/CLI.hpp>
@@ -339,7 +340,7 @@ int run(int argc, char** argv) {
     std::string scenesDir = PHOTON_SCENES_DIR;
     std::string resolutions = "640x480,800x600,1024x768,1280x720,1920x1080,2560x1600,3840x2400";
     std::string photons = "1000000";
-    std::string estimator = "radius";
+    std::string estimator;  // empty: what a render of many frames of the scene gets (chooseDefaults)
     std::vector<std::string> vary;
     std::string gridSweep;
     std::string jsonPath;
@@ -362,7 +363,7 @@ int run(int argc, char** argv) {
     app.add_option("--scenes-dir", scenesDir, "Where scene files are");
     app.add_option("--resolutions", resolutions, "Comma-separated WIDTHxHEIGHT");
     app.add_option("--photons", photons, "Comma-separated photon paths per frame");
-    app.add_option("--estimator", estimator, "Radiance estimate: " + choices(Estimator{}));
+    app.add_option("--estimator", estimator, "Radiance estimate: " + choices(Estimator{}) + " (default: a render's, sppm unless the scene says)");
     app.add_option("--frames", frames, "Timed frames per measurement (GPU backends)")->check(CLI::Range(1u, 100000u));
     app.add_option("--cpu-frames", cpuFrames, "Timed frames per measurement on the CPU")->check(CLI::Range(1u, 1000u));
     app.add_option("--warmup", warmup, "Untimed frames first")->check(CLI::Range(1u, 1000u));
@@ -388,9 +389,20 @@ int run(int argc, char** argv) {
     if (int code = parseCommandLine(app, argc, argv); code >= 0) {
         return code;
     }
-    RenderSettings checked;
-    setSetting(checked, *findSetting("estimator"), estimator, "--estimator");
-    Estimator est = checked.estimator;
+    std::optional<Estimator> given;
+    if (!estimator.empty()) {
+        RenderSettings checked;
+        setSetting(checked, *findSetting("estimator"), estimator, "--estimator");
+        given = checked.estimator;
+    }
+    // The estimator of the case: --estimator's, else the one a render of many frames would choose.
+    auto chooseEstimator = [&](RenderSettings& s) {
+        if (given) {
+            s.estimator = *given;
+        } else {
+            chooseDefaults(s, true);
+        }
+    };
     // Every list value is checked now, with the scene files' ranges, before anything is measured.
     auto photonCounts = [&](const std::string& list, const char* flag) {
         std::vector<std::uint32_t> counts;
@@ -445,7 +457,7 @@ int run(int argc, char** argv) {
             for (auto [width, height] : resolutionList) {
                 for (std::uint32_t n : photonList) {
                     RenderSettings s = scene.render;
-                    s.estimator = est;
+                    chooseEstimator(s);
                     s.width = width;
                     s.height = height;
                     s.photons = n;
@@ -465,7 +477,7 @@ int run(int argc, char** argv) {
     };
     auto casesFor = [&](const Scene& scene) {
         RenderSettings base = scene.render;
-        base.estimator = est;
+        chooseEstimator(base);
         base.frames = 1;
         std::vector<Case> cases;
         if (!gridSweepList.empty()) {

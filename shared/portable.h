@@ -28,6 +28,9 @@
 //  - Atomics are PH_ATOMIC_ADD(buffer element, value) and PH_ATOMIC_MAX, which return the old
 //    value: GLSL's atomicAdd/atomicMax, CUDA's, relaxed __atomic builtins on the CPU. PH_RESERVE_SLOT(counter)
 //    hands out one slot of an append buffer (on CUDA, one atomic per warp for all its threads).
+//    PH_TALLY_ADD and PH_TALLY_MAX are atomics whose old value nobody reads, on counters that
+//    every thread of a stage hits (histograms, maxima): on CUDA a warp's threads that name the
+//    same counter combine their values first and send one atomic.
 #ifndef PHOTON_SHARED_PORTABLE_H
 #define PHOTON_SHARED_PORTABLE_H
 
@@ -50,6 +53,8 @@
 #define PH_ATOMIC_ADD(lvalue, value) atomicAdd(lvalue, value)
 #define PH_ATOMIC_MAX(lvalue, value) atomicMax(lvalue, value)
 #define PH_RESERVE_SLOT(counter) atomicAdd(counter, 1u)
+#define PH_TALLY_ADD(lvalue, value) atomicAdd(lvalue, value)
+#define PH_TALLY_MAX(lvalue, value) atomicMax(lvalue, value)
 
 #else
 // ---- C++ and CUDA ----------------------------------------------------------------------------
@@ -84,6 +89,8 @@
 
 #ifdef __CUDACC__
 #include <cooperative_groups.h>
+#include <cooperative_groups/reduce.h>
+#include <type_traits>
 namespace photon {
 // One slot of an append buffer for each calling thread: the threads of a warp that append at the
 // same time share one atomic, since a million threads on one counter would queue up at L2.
@@ -96,12 +103,31 @@ __device__ inline std::uint32_t reserveSlotCoalesced(std::uint32_t* counter) {
     }
     return active.shfl(base, 0) + active.thread_rank();
 }
+
+// PH_TALLY_*: the calling threads of a warp that name the same counter reduce their values with
+// `op` (one match and one redux instruction) and the first of them sends the atomic. A pixel stage
+// that tallies every pixel into a few bins otherwise queues two million atomics at one address.
+template <typename Op>
+__device__ inline void tallyCoalesced(std::uint32_t* counter, std::uint32_t value, Op op) {
+    namespace cg = cooperative_groups;
+    cg::coalesced_group same = cg::labeled_partition(cg::coalesced_threads(), reinterpret_cast<unsigned long long>(counter));
+    std::uint32_t combined = cg::reduce(same, value, op);
+    if (same.thread_rank() == 0) {
+        if constexpr (std::is_same_v<Op, cg::plus<std::uint32_t>>) {
+            atomicAdd(counter, combined);
+        } else {
+            atomicMax(counter, combined);
+        }
+    }
+}
 }  // namespace photon
 #endif
 #ifdef __CUDA_ARCH__
 #define PH_ATOMIC_ADD(lvalue, value) atomicAdd(&(lvalue), (value))
 #define PH_ATOMIC_MAX(lvalue, value) atomicMax(&(lvalue), (value))
 #define PH_RESERVE_SLOT(counter) reserveSlotCoalesced(&(counter))
+#define PH_TALLY_ADD(lvalue, value) tallyCoalesced(&(lvalue), (value), cooperative_groups::plus<std::uint32_t>())
+#define PH_TALLY_MAX(lvalue, value) tallyCoalesced(&(lvalue), (value), cooperative_groups::greater<std::uint32_t>())
 #else
 namespace photon {
 // GCC has no __atomic_fetch_max: a compare-and-swap loop, relaxed like the others.
@@ -115,6 +141,8 @@ inline std::uint32_t atomicMaxRelaxed(std::uint32_t& target, std::uint32_t value
 #define PH_ATOMIC_ADD(lvalue, value) __atomic_fetch_add(&(lvalue), (value), __ATOMIC_RELAXED)
 #define PH_ATOMIC_MAX(lvalue, value) ::photon::atomicMaxRelaxed(lvalue, value)
 #define PH_RESERVE_SLOT(counter) PH_ATOMIC_ADD(counter, 1u)
+#define PH_TALLY_ADD(lvalue, value) (void)PH_ATOMIC_ADD(lvalue, value)
+#define PH_TALLY_MAX(lvalue, value) (void)PH_ATOMIC_MAX(lvalue, value)
 #endif
 #endif
 

@@ -140,9 +140,9 @@ PH_FN vec3 sppmUpdate(BUF_PARAM uint map, PH_IN(Shading) s, vec3 weight, float f
     }
     if (e.count > 0.0f) {
         uint bits = floatBitsToUint(e.radius);
-        PH_ATOMIC_MAX(BUF(counters)[COUNTER_SPPM_RADIUS + map], bits);
+        PH_TALLY_MAX(BUF(counters)[COUNTER_SPPM_RADIUS + map], bits);
         int bin = clamp(int(bits >> 23u) - 127 + int(SPPM_RADIUS_BINS / 2u), 0, int(SPPM_RADIUS_BINS) - 1);
-        PH_ATOMIC_ADD(BUF(counters)[COUNTER_SPPM_HISTOGRAM + map * SPPM_RADIUS_BINS + uint(bin)], 1u);
+        PH_TALLY_ADD(BUF(counters)[COUNTER_SPPM_HISTOGRAM + map * SPPM_RADIUS_BINS + uint(bin)], 1u);
     }
     return frame;
 }
