@@ -17,6 +17,11 @@
 namespace photon {
 namespace PHOTON_KERNEL_NAMESPACE {
 
+// Every kernel takes the frame's Bindings (buffer pointers and FrameParams, 672 bytes) by value as
+// a __grid_constant__: shared code reaches it through a reference, and without the qualifier nvcc
+// may copy the whole parameter to each thread's local memory and read every pointer and
+// parameter from there (it did in tracePixels: a 1,056-byte stack frame, 143 local loads).
+
 // The gather is bound by memory latency: more resident warps hide more of it. With blocks of up to
 // 256 threads, 4 per SM leaves 64 registers a thread; final gather needs more and gets them.
 constexpr int kGatherThreads = 256;
@@ -25,28 +30,28 @@ constexpr int gatherMinBlocks(uint globalMode) { return globalMode == GLOBAL_DIR
 
 // At most 64 registers (4 blocks of 256 on an SM): the traversal's stack would otherwise cost a
 // quarter of the resident warps for a few spilled values.
-__global__ void __launch_bounds__(256, 4) tracePhotonsKernel(Bindings b, uint paths) {
+__global__ void __launch_bounds__(256, 4) tracePhotonsKernel(const __grid_constant__ Bindings b, uint paths) {
     uint i = blockIdx.x * blockDim.x + threadIdx.x;
     if (i < paths) {
         traceSharedPhotonPath(b, i);
     }
 }
 
-__global__ void countCellsKernel(Bindings b, uint map) {
+__global__ void countCellsKernel(const __grid_constant__ Bindings b, uint map) {
     uint n = storedPhotons(b, map);
     for (uint i = blockIdx.x * blockDim.x + threadIdx.x; i < n; i += gridDim.x * blockDim.x) {
         countPhotonCell(b, map, i);
     }
 }
 
-__global__ void scatterPhotonsKernel(Bindings b, uint map) {
+__global__ void scatterPhotonsKernel(const __grid_constant__ Bindings b, uint map) {
     uint n = storedPhotons(b, map);
     for (uint i = blockIdx.x * blockDim.x + threadIdx.x; i < n; i += gridDim.x * blockDim.x) {
         scatterPhoton(b, map, i);
     }
 }
 
-__global__ void sortKeysKernel(Bindings b, uint map, uint n, std::uint64_t* keys, uint* indices) {
+__global__ void sortKeysKernel(const __grid_constant__ Bindings b, uint map, uint n, std::uint64_t* keys, uint* indices) {
     for (uint i = blockIdx.x * blockDim.x + threadIdx.x; i < n; i += gridDim.x * blockDim.x) {
         uvec2 key = photonSortKey(b, map, i);
         keys[i] = (std::uint64_t(key.y) << 32) | key.x;
@@ -54,7 +59,7 @@ __global__ void sortKeysKernel(Bindings b, uint map, uint n, std::uint64_t* keys
     }
 }
 
-__global__ void placeSortedKernel(Bindings b, uint map, uint n, const uint* order) {
+__global__ void placeSortedKernel(const __grid_constant__ Bindings b, uint map, uint n, const uint* order) {
     for (uint i = blockIdx.x * blockDim.x + threadIdx.x; i < n; i += gridDim.x * blockDim.x) {
         placePhoton(b, map, i, order[i]);
     }
@@ -67,14 +72,14 @@ __device__ inline bool pixelOf(const Bindings& b, uint& pixel) {
     return x < b.params.width && y < b.params.height;
 }
 
-__global__ void tracePixelsKernel(Bindings b) {
+__global__ void tracePixelsKernel(const __grid_constant__ Bindings b) {
     uint p;
     if (pixelOf(b, p)) {
         b.hitPoints[p] = tracePixel(b, p);
     }
 }
 
-__global__ void tracePrimaryRaysKernel(Bindings b, uint* hits) {
+__global__ void tracePrimaryRaysKernel(const __grid_constant__ Bindings b, uint* hits) {
     uint p;
     uint hit = pixelOf(b, p) ? tracePrimaryRay(b, p) : 0u;
     uint blockHits = __syncthreads_count(hit);
@@ -86,14 +91,14 @@ __global__ void tracePrimaryRaysKernel(Bindings b, uint* hits) {
 // One kernel per estimator, global mode and sppm start: constants fold away the others' code (the
 // k-nearest heap, final gather), which would otherwise cost registers and stack in every variant.
 template <uint Estimator, uint GlobalMode, bool SppmStart>
-__global__ void __launch_bounds__(kGatherThreads, gatherMinBlocks(GlobalMode)) gatherKernel(Bindings b) {
+__global__ void __launch_bounds__(kGatherThreads, gatherMinBlocks(GlobalMode)) gatherKernel(const __grid_constant__ Bindings b) {
     uint p;
     if (pixelOf(b, p)) {
         b.frameRadiance[p] = vec4(gatherStage(b, p, Estimator, GlobalMode, SppmStart), 1.0f);
     }
 }
 
-__global__ void accumulateKernel(Bindings b) {
+__global__ void accumulateKernel(const __grid_constant__ Bindings b) {
     uint p;
     if (pixelOf(b, p)) {
         b.accumulation[p] = accumulatePixel(b, p);
