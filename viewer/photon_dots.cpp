@@ -20,7 +20,7 @@ PhotonDots::PhotonDots(const vk::Context& context, const vk::VulkanBackend& back
     // Set 0 is the backend's layout, so that its descriptor set binds here unchanged.
     VkDescriptorSetLayout sets[2] = {backend.pipelines().setLayout, pass_.setLayout};
     pass_.layout = vk::createPipelineLayout(device, sets, 2, {VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(DotsPush)});
-    pass_.pipeline = vk::createComputePipeline(device, pass_.layout, spirv::viewer_dots, sizeof(spirv::viewer_dots));
+    pass_.pipeline = vk::createComputePipeline(context, pass_.layout, spirv::viewer_dots, sizeof(spirv::viewer_dots), "viewer_dots");
     resize(1, 1);
 }
 

@@ -306,11 +306,30 @@ void Context::createDevice(const ContextOptions& options) {
     features13.computeFullSubgroups = VK_TRUE;
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &features13};
 
+    std::vector<const char*> extensions = options.deviceExtensions;
+    VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR executables{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR};
+    if (envFlag("PHOTON_VULKAN_PIPELINE_STATISTICS")) {
+        std::uint32_t count = 0;
+        VK_CHECK(vkEnumerateDeviceExtensionProperties(physicalDevice, nullptr, &count, nullptr));
+        std::vector<VkExtensionProperties> available(count);
+        VK_CHECK(vkEnumerateDeviceExtensionProperties(physicalDevice, nullptr, &count, available.data()));
+        if (hasExtension(available, VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME)) {
+            extensions.push_back(VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
+            executables.pipelineExecutableInfo = VK_TRUE;
+            features13.pNext = &executables;
+            pipelineStatistics = true;
+        } else {
+            std::fprintf(stderr, "PHOTON_VULKAN_PIPELINE_STATISTICS: %s has no %s\n", properties.deviceName,
+                         VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
+        }
+    }
+
     VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features};
     info.queueCreateInfoCount = 1;
     info.pQueueCreateInfos = &queueInfo;
-    info.enabledExtensionCount = std::uint32_t(options.deviceExtensions.size());
-    info.ppEnabledExtensionNames = options.deviceExtensions.data();
+    info.enabledExtensionCount = std::uint32_t(extensions.size());
+    info.ppEnabledExtensionNames = extensions.data();
     VK_CHECK(vkCreateDevice(physicalDevice, &info, nullptr, &device));
     vkGetDeviceQueue(device, queueFamily, 0, &queue);
 }

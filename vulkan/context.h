@@ -73,6 +73,10 @@ public:
     VkPhysicalDeviceMemoryProperties memoryProperties{};
     std::uint32_t subgroupSize = 0;                 // the default subgroup size (8 on lavapipe, 32 on NVIDIA)
     std::uint32_t maxSubgroupSize = 0;              // largest subgroup a compute pipeline may get
+    // PHOTON_VULKAN_PIPELINE_STATISTICS=1 on a device with VK_KHR_pipeline_executable_properties:
+    // each pipeline's compiler statistics (registers, spills, ...) go to stderr as it is built, to
+    // compare the driver's compilation of a stage with nvcc's (ptxas -v).
+    bool pipelineStatistics = false;
 
 private:
     static VKAPI_ATTR VkBool32 VKAPI_CALL onMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,

@@ -50,16 +50,16 @@ PhotonSort::PhotonSort(const Context& context, const Pipelines& pipelines) : con
     pool_ = descriptors.pool;
     set_ = descriptors.set;
 
-    auto create = [&](const auto& words, VkPipelineShaderStageCreateFlags flags = 0) {
-        return createComputePipeline(device, layout_, words, sizeof(words), nullptr, flags);
+    auto create = [&](const auto& words, const char* name, VkPipelineShaderStageCreateFlags flags = 0) {
+        return createComputePipeline(context, layout_, words, sizeof(words), name, nullptr, flags);
     };
-    pipelines_[kArgs] = create(spirv::sortArgs);
-    pipelines_[kKeys] = create(spirv::sortKeys);
-    pipelines_[kCount] = create(spirv::sortCount);
-    pipelines_[kScan] = create(spirv::sortScan);
+    pipelines_[kArgs] = create(spirv::sortArgs, "sortArgs");
+    pipelines_[kKeys] = create(spirv::sortKeys, "sortKeys");
+    pipelines_[kCount] = create(spirv::sortCount, "sortCount");
+    pipelines_[kScan] = create(spirv::sortScan, "sortScan");
     // sortScatter numbers its invocations by subgroup, which needs full subgroups.
-    pipelines_[kScatter] = create(spirv::sortScatter, VK_PIPELINE_SHADER_STAGE_CREATE_REQUIRE_FULL_SUBGROUPS_BIT);
-    pipelines_[kPlace] = create(spirv::sortPlace);
+    pipelines_[kScatter] = create(spirv::sortScatter, "sortScatter", VK_PIPELINE_SHADER_STAGE_CREATE_REQUIRE_FULL_SUBGROUPS_BIT);
+    pipelines_[kPlace] = create(spirv::sortPlace, "sortPlace");
 }
 
 PhotonSort::~PhotonSort() {

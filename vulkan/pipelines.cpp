@@ -38,6 +38,9 @@ ShaderCode code(const std::uint32_t (&words)[N]) {
     return {words, sizeof(words)};
 }
 
+constexpr const char* kShaderNames[kShaderCount] = {"tracePhotons", "gridArgs", "gridCount", "gridScan", "gridScanAdd",
+                                                   "gridScatter", "tracePixels", "gather", "accumulate"};
+
 ShaderCode shaderCode(Shader shader) {
     switch (shader) {
         case kTracePhotons: return code(spirv::tracePhotons);
@@ -132,18 +135,65 @@ Pipelines::Pipelines(const Context& context) : context_(context) {
         bool scan = s == kGridScan || s == kGridScanAdd;
         // gridScan numbers its invocations by subgroup, which needs full subgroups.
         VkPipelineShaderStageCreateFlags flags = s == kGridScan ? VK_PIPELINE_SHADER_STAGE_CREATE_REQUIRE_FULL_SUBGROUPS_BIT : 0;
-        pipeline[s] = create(Shader(s), scan ? &scanSpecialization : nullptr, flags);
+        pipeline[s] = create(Shader(s), scan ? &scanSpecialization : nullptr, flags, kShaderNames[s]);
     }
 }
 
-VkPipeline createComputePipeline(VkDevice device, VkPipelineLayout layout, const std::uint32_t* words, std::size_t bytes,
-                                 const VkSpecializationInfo* specialization, VkPipelineShaderStageCreateFlags flags) {
+namespace {
+
+// The compiler's statistics of each executable of `pipeline` (VK_KHR_pipeline_executable_properties),
+// one line each on stderr.
+void printPipelineStatistics(const Context& context, VkPipeline pipeline, const char* name) {
+    auto properties = reinterpret_cast<PFN_vkGetPipelineExecutablePropertiesKHR>(
+        vkGetDeviceProcAddr(context.device, "vkGetPipelineExecutablePropertiesKHR"));
+    auto statistics = reinterpret_cast<PFN_vkGetPipelineExecutableStatisticsKHR>(
+        vkGetDeviceProcAddr(context.device, "vkGetPipelineExecutableStatisticsKHR"));
+    if (properties == nullptr || statistics == nullptr) {
+        return;
+    }
+    VkPipelineInfoKHR info{VK_STRUCTURE_TYPE_PIPELINE_INFO_KHR};
+    info.pipeline = pipeline;
+    std::uint32_t count = 0;
+    VK_CHECK(properties(context.device, &info, &count, nullptr));
+    std::vector<VkPipelineExecutablePropertiesKHR> executables(count, {VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_PROPERTIES_KHR});
+    VK_CHECK(properties(context.device, &info, &count, executables.data()));
+    for (std::uint32_t e = 0; e < count; ++e) {
+        VkPipelineExecutableInfoKHR which{VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INFO_KHR};
+        which.pipeline = pipeline;
+        which.executableIndex = e;
+        std::uint32_t n = 0;
+        VK_CHECK(statistics(context.device, &which, &n, nullptr));
+        std::vector<VkPipelineExecutableStatisticKHR> values(n, {VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_STATISTIC_KHR});
+        VK_CHECK(statistics(context.device, &which, &n, values.data()));
+        std::string line = std::string("vulkan pipeline ") + name + " (" + executables[e].name + ", subgroup " +
+                           std::to_string(executables[e].subgroupSize) + "):";
+        for (const VkPipelineExecutableStatisticKHR& v : values) {
+            line += std::string(" ") + v.name + " ";
+            switch (v.format) {
+                case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_BOOL32_KHR: line += v.value.b32 ? "yes" : "no"; break;
+                case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_INT64_KHR: line += std::to_string(v.value.i64); break;
+                case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_UINT64_KHR: line += std::to_string(v.value.u64); break;
+                case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_FLOAT64_KHR: line += std::to_string(v.value.f64); break;
+                default: line += "?"; break;  // a format newer than this code: shown, not guessed
+            }
+            line += ";";
+        }
+        std::fprintf(stderr, "%s\n", line.c_str());
+    }
+}
+
+}  // namespace
+
+VkPipeline createComputePipeline(const Context& context, VkPipelineLayout layout, const std::uint32_t* words,
+                                 std::size_t bytes, const char* name, const VkSpecializationInfo* specialization,
+                                 VkPipelineShaderStageCreateFlags flags) {
     VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
     moduleInfo.codeSize = bytes;
     moduleInfo.pCode = words;
     VkShaderModule module = VK_NULL_HANDLE;
-    VK_CHECK(vkCreateShaderModule(device, &moduleInfo, nullptr, &module));
+    VK_CHECK(vkCreateShaderModule(context.device, &moduleInfo, nullptr, &module));
     VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    info.flags = context.pipelineStatistics ? VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR : 0;
     info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
     info.stage.flags = flags;
     info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
@@ -152,16 +202,19 @@ VkPipeline createComputePipeline(VkDevice device, VkPipelineLayout layout, const
     info.stage.pSpecializationInfo = specialization;
     info.layout = layout;
     VkPipeline created = VK_NULL_HANDLE;
-    VkResult result = vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &created);
-    vkDestroyShaderModule(device, module, nullptr);
+    VkResult result = vkCreateComputePipelines(context.device, VK_NULL_HANDLE, 1, &info, nullptr, &created);
+    vkDestroyShaderModule(context.device, module, nullptr);
     VK_CHECK(result);
+    if (context.pipelineStatistics) {
+        printPipelineStatistics(context, created, name);
+    }
     return created;
 }
 
 VkPipeline Pipelines::create(Shader shader, const VkSpecializationInfo* specialization,
-                             VkPipelineShaderStageCreateFlags flags) {
+                             VkPipelineShaderStageCreateFlags flags, const char* name) {
     ShaderCode code = shaderCode(shader);
-    return createComputePipeline(context_.device, layout, code.words, code.bytes, specialization, flags);
+    return createComputePipeline(context_, layout, code.words, code.bytes, name, specialization, flags);
 }
 
 VkPipeline Pipelines::gather(std::uint32_t estimator, std::uint32_t globalMode, bool sppmStart) {
@@ -177,7 +230,9 @@ VkPipeline Pipelines::gather(std::uint32_t estimator, std::uint32_t globalMode, 
                                                {2, sizeof(std::uint32_t), sizeof(std::uint32_t)},
                                                {3, 2 * sizeof(std::uint32_t), sizeof(VkBool32)}};
         VkSpecializationInfo specialization{3, entries, sizeof(constants), constants};
-        gatherVariants_[variant] = create(kGather, &specialization, 0);
+        std::string name = std::string("gather<") + std::to_string(estimator) + "," + std::to_string(globalMode) + "," +
+                           (sppmStart ? "start" : "steady") + ">";
+        gatherVariants_[variant] = create(kGather, &specialization, 0, name.c_str());
     }
     return gatherVariants_[variant];
 }

@@ -35,9 +35,10 @@ struct GroupCount {
 };
 GroupCount groupsFor(std::uint64_t items, std::uint32_t groupSize);
 
-// A compute pipeline from SPIR-V words (`bytes` long) over `layout`.
-VkPipeline createComputePipeline(VkDevice device, VkPipelineLayout layout, const std::uint32_t* words, std::size_t bytes,
-                                 const VkSpecializationInfo* specialization = nullptr,
+// A compute pipeline from SPIR-V words (`bytes` long) over `layout`. With the context's
+// pipelineStatistics, its compiler statistics are printed under `name`.
+VkPipeline createComputePipeline(const Context& context, VkPipelineLayout layout, const std::uint32_t* words,
+                                 std::size_t bytes, const char* name, const VkSpecializationInfo* specialization = nullptr,
                                  VkPipelineShaderStageCreateFlags flags = 0);
 
 // Binds `shader` and dispatches `items` invocations (rounded up to whole workgroups).
@@ -65,7 +66,8 @@ public:
                                                        // within the device's limits
 
 private:
-    VkPipeline create(Shader shader, const VkSpecializationInfo* specialization, VkPipelineShaderStageCreateFlags flags);
+    VkPipeline create(Shader shader, const VkSpecializationInfo* specialization, VkPipelineShaderStageCreateFlags flags,
+                      const char* name);
 
     const Context& context_;
     static constexpr std::uint32_t kGatherVariants = ESTIMATOR_COUNT * GLOBAL_MODE_COUNT * 2;
