@@ -72,7 +72,9 @@ __device__ inline bool pixelOf(const Bindings& b, uint& pixel) {
     return x < b.params.width && y < b.params.height;
 }
 
-__global__ void tracePixelsKernel(const __grid_constant__ Bindings b) {
+// At most 168 registers, for 6 blocks of 8x8 an SM instead of 4: the eye path's spills (1.3 KB, to
+// L1) cost less than the warps its 234 registers left idle (docs/performance.md, issue 19).
+__global__ void __maxnreg__(168) tracePixelsKernel(const __grid_constant__ Bindings b) {
     uint p;
     if (pixelOf(b, p)) {
         b.hitPoints[p] = tracePixel(b, p);
