@@ -28,6 +28,14 @@ std::string lower(std::string s) {
     return s;
 }
 
+std::vector<VkExtensionProperties> deviceExtensionsOf(VkPhysicalDevice device) {
+    std::uint32_t count = 0;
+    VK_CHECK(vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr));
+    std::vector<VkExtensionProperties> extensions(count);
+    VK_CHECK(vkEnumerateDeviceExtensionProperties(device, nullptr, &count, extensions.data()));
+    return extensions;
+}
+
 bool hasExtension(const std::vector<VkExtensionProperties>& available, const char* name) {
     return std::any_of(available.begin(), available.end(),
                        [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
@@ -79,10 +87,8 @@ std::string checkDevice(DeviceCandidate& c, VkSurfaceKHR surface, const std::vec
     if (!features13.computeFullSubgroups) {
         return "no computeFullSubgroups";
     }
+    std::vector<VkExtensionProperties> extensions = deviceExtensionsOf(c.physicalDevice);
     std::uint32_t count = 0;
-    VK_CHECK(vkEnumerateDeviceExtensionProperties(c.physicalDevice, nullptr, &count, nullptr));
-    std::vector<VkExtensionProperties> extensions(count);
-    VK_CHECK(vkEnumerateDeviceExtensionProperties(c.physicalDevice, nullptr, &count, extensions.data()));
     for (const char* name : deviceExtensions) {
         if (!hasExtension(extensions, name)) {
             return std::string("no ") + name;
@@ -310,11 +316,7 @@ void Context::createDevice(const ContextOptions& options) {
     VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR executables{
         VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR};
     if (envFlag("PHOTON_VULKAN_PIPELINE_STATISTICS")) {
-        std::uint32_t count = 0;
-        VK_CHECK(vkEnumerateDeviceExtensionProperties(physicalDevice, nullptr, &count, nullptr));
-        std::vector<VkExtensionProperties> available(count);
-        VK_CHECK(vkEnumerateDeviceExtensionProperties(physicalDevice, nullptr, &count, available.data()));
-        if (hasExtension(available, VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME)) {
+        if (hasExtension(deviceExtensionsOf(physicalDevice), VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME)) {
             extensions.push_back(VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
             executables.pipelineExecutableInfo = VK_TRUE;
             features13.pNext = &executables;
