@@ -103,10 +103,11 @@ void printSceneCost(const std::string& name, const Scene& scene) {
     const BvhStats& b = scene.bvh;
     double rate = b.buildSeconds > 0 ? double(b.primitives) / b.buildSeconds / 1e6 : 0.0;
     std::printf("  %s: %zu triangles, %u BVH primitives; BVH built in %.3f s (%.1f M primitives/s, %.2f M/s per core "
-                "on %zu), %u nodes, depth %u, SAH cost %.1f, %.0f bytes per triangle, scene %s\n",
+                "on %zu), %u binary nodes, depth %u, SAH cost %.1f; %u wide nodes, depth %u, SAH cost %.1f; %.0f bytes per "
+                "triangle, scene %s\n",
                 name.c_str(), scene.triangles.size(), b.primitives, b.buildSeconds, rate,
-                rate / double(workerThreads()), std::size_t(workerThreads()), b.nodes, b.depth, b.sahCost,
-                j.value("bytes_per_triangle", 0.0), formatMiB(j["total_bytes"].get<std::uint64_t>()).c_str());
+                rate / double(workerThreads()), std::size_t(workerThreads()), b.nodes, b.depth, b.sahCost, b.wideNodes,
+                b.wideDepth, b.wideSahCost, j.value("bytes_per_triangle", 0.0), formatMiB(j["total_bytes"].get<std::uint64_t>()).c_str());
     std::fflush(stdout);
 }
 
@@ -117,10 +118,10 @@ nlohmann::json benchBvhBuilds(const std::string& name, const Scene& scene, std::
     nlohmann::json rows = nlohmann::json::array();
     for (unsigned threads : threadCounts) {
         setThreadLimit(threads);
-        std::vector<double> total, prepare, top, subtrees, flatten;
+        std::vector<double> total, prepare, top, subtrees, flatten, widen;
         BvhStats b;
         for (std::uint32_t i = 0; i < builds; ++i) {
-            std::vector<BvhNode> nodes;  // new every time, as Scene::finalize's are
+            std::vector<WideBvhNode> nodes;  // new every time, as Scene::finalize's are
             std::vector<std::uint32_t> refs;
             b = buildBvh(scene, nodes, refs);
             total.push_back(b.buildSeconds);
@@ -128,15 +129,17 @@ nlohmann::json benchBvhBuilds(const std::string& name, const Scene& scene, std::
             top.push_back(b.topSeconds);
             subtrees.push_back(b.subtreeSeconds);
             flatten.push_back(b.flattenSeconds);
+            widen.push_back(b.widenSeconds);
         }
         unsigned used = threadLimit();
         setThreadLimit(0);
         double seconds = median(total);
         double rate = seconds > 0 ? double(b.primitives) / seconds / 1e6 : 0.0;
         double fastest = *std::min_element(total.begin(), total.end());
-        std::printf("%-16s %10u %7u %9.4f %9.4f %8.1f %8.2f %8.4f %8.4f %8.4f %8.4f %9u %5u %9.2f\n", name.c_str(),
-                    b.primitives, used, seconds, fastest, rate, rate / used, median(prepare), median(top),
-                    median(subtrees), median(flatten), b.nodes, b.depth, b.sahCost);
+        std::printf("%-16s %10u %7u %9.4f %9.4f %8.1f %8.2f %8.4f %8.4f %8.4f %8.4f %8.4f %9u %5u %9.2f %9u %5u %9.2f\n",
+                    name.c_str(), b.primitives, used, seconds, fastest, rate, rate / used, median(prepare), median(top),
+                    median(subtrees), median(flatten), median(widen), b.nodes, b.depth, b.sahCost, b.wideNodes,
+                    b.wideDepth, b.wideSahCost);
         std::fflush(stdout);
         rows.push_back({{"scene", name},
                         {"primitives", b.primitives},
@@ -148,10 +151,15 @@ nlohmann::json benchBvhBuilds(const std::string& name, const Scene& scene, std::
                         {"top_seconds", median(top)},
                         {"subtree_seconds", median(subtrees)},
                         {"flatten_seconds", median(flatten)},
+                        {"widen_seconds", median(widen)},
                         {"nodes", b.nodes},
                         {"leaves", b.leaves},
                         {"depth", b.depth},
-                        {"sah_cost", b.sahCost}});
+                        {"sah_cost", b.sahCost},
+                        {"wide_nodes", b.wideNodes},
+                        {"wide_depth", b.wideDepth},
+                        {"wide_sah_cost", b.wideSahCost},
+                        {"stack", b.stack}});
     }
     return rows;
 }
@@ -535,9 +543,9 @@ int run(int argc, char** argv) {
             }
             threadCounts.push_back(unsigned(n));
         }
-        std::printf("%-16s %10s %7s %9s %9s %8s %8s %8s %8s %8s %8s %9s %5s %9s\n", "scene", "prims", "threads",
-                    "median s", "min s", "M/s", "M/s/core", "prepare", "top", "subtrees", "flatten", "nodes", "depth",
-                    "SAH");
+        std::printf("%-16s %10s %7s %9s %9s %8s %8s %8s %8s %8s %8s %8s %9s %5s %9s %9s %5s %9s\n", "scene", "prims",
+                    "threads", "median s", "min s", "M/s", "M/s/core", "prepare", "top", "subtrees", "flatten", "widen",
+                    "nodes", "depth", "SAH", "wide", "depth", "wide SAH");
         nlohmann::json rows = nlohmann::json::array();
         for (const std::string& sceneName : splitList(scenes)) {
             Scene scene = sceneNamed(sceneName, scenesDir);  // built once by its finalize: a warm-up

@@ -24,6 +24,10 @@ nlohmann::json sceneStatsJson(const Scene& scene) {
                 {"leaves", scene.bvh.leaves},
                 {"depth", scene.bvh.depth},
                 {"sah_cost", scene.bvh.sahCost},
+                {"wide_nodes", scene.bvh.wideNodes},
+                {"wide_depth", scene.bvh.wideDepth},
+                {"wide_sah_cost", scene.bvh.wideSahCost},
+                {"stack", scene.bvh.stack},
                 {"build_seconds", scene.bvh.buildSeconds}};
     j["environment"] = {{"source", scene.environment.source.empty() ? "uniform" : scene.environment.source},
                         {"width", scene.environment.map.width},
@@ -45,7 +49,7 @@ nlohmann::json sceneStatsJson(const Scene& scene) {
     // all bounded primitives (its part of them).
     if (!scene.triangles.empty()) {
         double bounded = double(scene.spheres.size() + scene.quads.size() + scene.triangles.size());
-        double hierarchy = double(scene.bvhNodes.size() * sizeof(BvhNode) + scene.primitiveRefs.size() * sizeof(std::uint32_t));
+        double hierarchy = double(scene.bvhNodes.size() * sizeof(WideBvhNode) + scene.primitiveRefs.size() * sizeof(std::uint32_t));
         double own = double(scene.triangles.size() * sizeof(Triangle) + scene.triangleAttributes.size() * sizeof(TriangleAttributes));
         j["bytes_per_triangle"] = own / double(scene.triangles.size()) + hierarchy / bounded;
     }

@@ -28,7 +28,7 @@
     X(LIGHTS, 9u, Light, lights, RO, SCENE)                                    \
     X(EMISSIVE_TRIANGLES, 10u, EmissiveTriangle, emissiveTriangles, RO, SCENE) \
     X(TARGETS, 11u, CausticTarget, targets, RO, SCENE)                         \
-    X(BVH_NODES, 12u, BvhNode, bvhNodes, RO, SCENE)                            \
+    X(BVH_NODES, 12u, WideBvhNode, bvhNodes, RO, SCENE)                        \
     X(PRIMITIVE_REFS, 13u, uint, primitiveRefs, RO, SCENE)                     \
     X(PHOTONS, 14u, Photon, photons, RW, PHOTON)                               \
     X(PHOTON_KEYS, 15u, uint, photonKeys, RW, PHOTON)                          \

@@ -177,7 +177,22 @@ PH_CONST uint WRAP_MIRRORED_REPEAT = 2u;
 PH_CONST uint KNN_MAX = 64u;              // largest k of the k-nearest estimator
 PH_CONST uint CAUSTIC_TARGETS_MAX = 64u;  // specular objects the caustic pass aims at
 PH_CONST uint LIGHTS_MAX = 64u;
-PH_CONST uint BVH_STACK_SIZE = 64u;       // the traversal's stack: the host refuses deeper hierarchies
+PH_CONST uint BVH_STACK_SIZE = 96u;       // the traversal's stack: the host refuses hierarchies that need more
+
+// A wide BVH node's children (WideBvhNode): four, and what byte i of its `kinds` says of child i
+// besides a leaf's primitive count (1 .. BVH_LEAF_MAX).
+PH_CONST uint BVH_WIDTH = 4u;
+PH_CONST uint BVH_LEAF_MAX = 4u;
+PH_CONST uint WIDE_CHILD_EMPTY = 0u;      // no child: the node's children before it are all it has
+PH_CONST uint WIDE_CHILD_INNER = 255u;
+// The traversal's word for a leaf child (intersect.h): this bit, its count − 1 in the two bits
+// below, its first primitive reference in the rest.
+PH_CONST uint WIDE_LEAF_CODE = 0x80000000u;
+PH_CONST uint WIDE_LEAF_COUNT_SHIFT = 29u;
+PH_CONST uint WIDE_LEAF_FIRST_MASK = (1u << 29u) - 1u;
+#ifdef __cplusplus
+static_assert(BVH_LEAF_MAX <= 4u, "a leaf's count − 1 fits the traversal's two bits");
+#endif
 
 PH_NAMESPACE_END
 

@@ -246,12 +246,48 @@ PH_FN bool traceLeaf(BUF_PARAM uint first, uint count, PH_IN(Ray) ray, PH_IN(Ray
     return false;
 }
 
+// Child i's box of wide node n (layout.h: origin + q · scale per axis) against the ray.
+PH_FN float wideChildEntry(PH_IN(RayFrame) f, PH_IN(WideBvhNode) n, vec3 scale, uint i, float tMax) {
+    uint shift = 8u * i;
+    vec3 lower = vec3(float((n.lowerX >> shift) & 0xffu), float((n.lowerY >> shift) & 0xffu), float((n.lowerZ >> shift) & 0xffu));
+    vec3 upper = vec3(float((n.upperX >> shift) & 0xffu), float((n.upperY >> shift) & 0xffu), float((n.upperZ >> shift) & 0xffu));
+    return intersectBox(f, n.origin + lower * scale, n.origin + upper * scale, tMax);
+}
+
+// A wide node's quantization steps 2^(e − 127), e the bytes of `scales`.
+PH_FN vec3 wideScale(uint scales) {
+    return vec3(uintBitsToFloat((scales & 0xffu) << 23u), uintBitsToFloat(((scales >> 8u) & 0xffu) << 23u),
+                uintBitsToFloat(((scales >> 16u) & 0xffu) << 23u));
+}
+
+// What the traversal keeps of a child, in one word: an inner node's index, or a leaf's first
+// primitive reference and count with WIDE_LEAF_CODE set.
+PH_FN uint wideChildCode(uint child, uint kind) {
+    return kind == WIDE_CHILD_INNER ? child : WIDE_LEAF_CODE | ((kind - 1u) << WIDE_LEAF_COUNT_SHIFT) | child;
+}
+
+// Orders two children (entry, code) by entry, the nearer first; equal entries keep their order.
+PH_FN void orderChildren(PH_INOUT(float) entryA, PH_INOUT(uint) codeA, PH_INOUT(float) entryB, PH_INOUT(uint) codeB) {
+    if (entryB < entryA) {
+        float e = entryA;
+        entryA = entryB;
+        entryB = e;
+        uint c = codeA;
+        codeA = codeB;
+        codeB = c;
+    }
+}
+
 // The one traversal of the scene: the nearest hit within (0, ray.tMax) (QUERY_ANY: the first one
-// found). Planes one by one; then the hierarchy, without recursion, in Aila and Laine's manner
-// ("Understanding the Efficiency of Ray Traversal on GPUs", HPG 2009): a node holds both children's
-// boxes, leaves are tested as they are met, the nearer inner child is visited first and the other
-// goes on a stack of BVH_STACK_SIZE (the host builds no deeper hierarchy). Every backend walks the
-// nodes in the same order, so that ties between equally near primitives break alike.
+// found). Planes one by one; then the four-wide hierarchy without recursion, in the manner of
+// Aila and Laine ("Understanding the Efficiency of Ray Traversal on GPUs", HPG 2009) and Ylitie et
+// al. (HPG 2017): a node's children are sorted by where the ray enters their boxes; the nearest
+// is taken next, the others go on a stack with their entry distances, nearest on top, and are
+// skipped when they come off it if a hit nearer than their box has been found meanwhile. Leaves
+// go through the stack like inner nodes (one place tests them, not one per child: the
+// primitive tests are large). The host builds no hierarchy that needs more than BVH_STACK_SIZE.
+// Every backend walks the nodes in the same order, so that ties between equally near primitives
+// break alike.
 PH_FN TraceResult traceRay(BUF_PARAM PH_IN(Ray) ray, uint query) {
     TraceResult result;
     result.t = ray.tMax;
@@ -275,51 +311,68 @@ PH_FN TraceResult traceRay(BUF_PARAM PH_IN(Ray) ray, uint query) {
         traceLeaf(BUF_ARG 0u, BUF(params).scene.linearCount, ray, frame, query, result);
         return result;
     }
-    uint stack[BVH_STACK_SIZE];
+    uint stackCode[BVH_STACK_SIZE];
+    float stackEntry[BVH_STACK_SIZE];
     uint depth = 0u;
-    uint node = 0u;
+    uint code = 0u;  // the root
     while (true) {
-        BvhNode n = BUF(bvhNodes)[node];
-        float tA = intersectBox(frame, n.lowerA, n.upperA, result.t);
-        float tB = intersectBox(frame, n.lowerB, n.upperB, result.t);
-        bool innerA = false;
-        bool innerB = false;
-        if (tA < FLOAT_MAX) {
-            if (n.countA > 0u) {
-                if (traceLeaf(BUF_ARG n.childA, n.countA, ray, frame, query, result)) {
-                    return result;
-                }
-            } else {
-                innerA = true;
+        if ((code & WIDE_LEAF_CODE) != 0u) {
+            uint count = ((code >> WIDE_LEAF_COUNT_SHIFT) & 3u) + 1u;
+            if (traceLeaf(BUF_ARG code & WIDE_LEAF_FIRST_MASK, count, ray, frame, query, result)) {
+                return result;
             }
-        }
-        if (tB < FLOAT_MAX) {
-            if (n.countB > 0u) {
-                if (traceLeaf(BUF_ARG n.childB, n.countB, ray, frame, query, result)) {
-                    return result;
-                }
-            } else {
-                innerB = true;
-            }
-        }
-        // A leaf may have brought the nearest hit closer than an inner child's box.
-        innerA = innerA && tA < result.t;
-        innerB = innerB && tB < result.t;
-        if (innerA && innerB) {
-            bool aFirst = tA <= tB;
-            stack[depth] = aFirst ? n.childB : n.childA;
-            depth += 1u;
-            node = aFirst ? n.childA : n.childB;
-        } else if (innerA) {
-            node = n.childA;
-        } else if (innerB) {
-            node = n.childB;
         } else {
-            if (depth == 0u) {
-                break;
+            WideBvhNode n = BUF(bvhNodes)[code];
+            vec3 scale = wideScale(n.scales);
+            vec4 entry = vec4(FLOAT_MAX);
+            for (uint i = 0u; i < BVH_WIDTH; ++i) {
+                if (((n.kinds >> (8u * i)) & 0xffu) == WIDE_CHILD_EMPTY) {
+                    break;
+                }
+                entry[i] = wideChildEntry(frame, n, scale, i, result.t);
             }
+            float e0 = entry.x;
+            float e1 = entry.y;
+            float e2 = entry.z;
+            float e3 = entry.w;
+            uint c0 = wideChildCode(n.children.x, n.kinds & 0xffu);
+            uint c1 = wideChildCode(n.children.y, (n.kinds >> 8u) & 0xffu);
+            uint c2 = wideChildCode(n.children.z, (n.kinds >> 16u) & 0xffu);
+            uint c3 = wideChildCode(n.children.w, n.kinds >> 24u);
+            orderChildren(e0, c0, e1, c1);
+            orderChildren(e2, c2, e3, c3);
+            orderChildren(e0, c0, e2, c2);
+            orderChildren(e1, c1, e3, c3);
+            orderChildren(e1, c1, e2, c2);
+            if (e3 < FLOAT_MAX) {
+                stackCode[depth] = c3;
+                stackEntry[depth] = e3;
+                depth += 1u;
+            }
+            if (e2 < FLOAT_MAX) {
+                stackCode[depth] = c2;
+                stackEntry[depth] = e2;
+                depth += 1u;
+            }
+            if (e1 < FLOAT_MAX) {
+                stackCode[depth] = c1;
+                stackEntry[depth] = e1;
+                depth += 1u;
+            }
+            if (e0 < FLOAT_MAX) {
+                code = c0;
+                continue;
+            }
+        }
+        // The nearest waiting child that a hit found since has not put out of reach.
+        bool next = false;
+        while (depth > 0u && !next) {
             depth -= 1u;
-            node = stack[depth];
+            code = stackCode[depth];
+            next = stackEntry[depth] < result.t;
+        }
+        if (!next) {
+            break;
         }
     }
     return result;

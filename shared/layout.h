@@ -79,14 +79,18 @@ struct PH_ALIGN16 Texture {
     vec3 transformT; uint pad1;      // t' = dot(transformT, (s, t, 1))
 };
 
-// A node of the bounding volume hierarchy with both children's boxes (Aila & Laine 2009), so that
-// one fetch tests two boxes. A child is an inner node (count 0: `child` is its node) or a leaf
-// (count primitives from primitiveRefs[child]); an absent child has an empty box.
-struct PH_ALIGN16 BvhNode {
-    vec3 lowerA; uint childA;
-    vec3 upperA; uint countA;
-    vec3 lowerB; uint childB;
-    vec3 upperB; uint countB;
+// A node of the bounding volume hierarchy: four children, their boxes quantized to a byte per
+// plane as in CWBVH (Ylitie, Karras & Laine, "Efficient Incoherent Ray Traversal on GPUs Through
+// Compressed Wide BVHs", HPG 2017), so that one 64-byte fetch tests four boxes. Child i's box is
+// origin + q · scale per axis, q its byte i of lower* and upper*, scale 2^(e − 127) with e byte
+// 0, 1, 2 of `scales` (x, y, z); the host rounds the planes outwards, so a box decoded holds its
+// child. Byte i of `kinds`: WIDE_CHILD_EMPTY, WIDE_CHILD_INNER (children[i] is its node) or a
+// leaf's primitive count (primitiveRefs[children[i] ..]).
+struct PH_ALIGN16 WideBvhNode {
+    vec3 origin; uint scales;
+    uint lowerX; uint lowerY; uint lowerZ; uint kinds;
+    uint upperX; uint upperY; uint upperZ; uint pad0;
+    uvec4 children;
 };
 
 // A triangle that emits, for sampling the emissive triangles of a LIGHT_TRIANGLES light by power.
@@ -244,9 +248,9 @@ PH_OFFSET(Material, albedoTexture, 48); PH_OFFSET(Material, emissionTexture, 60)
 PH_OFFSET(Material, alphaCutoff, 76); PH_OFFSET(Material, attenuation, 80); PH_OFFSET(Material, flags, 92);
 PH_OFFSET(Material, normalScale, 96); PH_OFFSET(Material, dispersion, 100);
 PH_SIZE(Texture, 48); PH_OFFSET(Texture, wrap, 12); PH_OFFSET(Texture, transformS, 16); PH_OFFSET(Texture, transformT, 32);
-PH_SIZE(BvhNode, 64); PH_OFFSET(BvhNode, childA, 12); PH_OFFSET(BvhNode, upperA, 16); PH_OFFSET(BvhNode, countA, 28);
-PH_OFFSET(BvhNode, lowerB, 32); PH_OFFSET(BvhNode, childB, 44); PH_OFFSET(BvhNode, upperB, 48);
-PH_OFFSET(BvhNode, countB, 60);
+PH_SIZE(WideBvhNode, 64); PH_OFFSET(WideBvhNode, scales, 12); PH_OFFSET(WideBvhNode, lowerX, 16);
+PH_OFFSET(WideBvhNode, kinds, 28); PH_OFFSET(WideBvhNode, upperX, 32); PH_OFFSET(WideBvhNode, pad0, 44);
+PH_OFFSET(WideBvhNode, children, 48);
 PH_SIZE(EmissiveTriangle, 16); PH_OFFSET(EmissiveTriangle, area, 12);
 PH_SIZE(Light, 112); PH_OFFSET(Light, emitterFirst, 96); PH_OFFSET(Light, emitterCount, 100); PH_OFFSET(Light, type, 12); PH_OFFSET(Light, power, 16); PH_OFFSET(Light, extent, 28);
 PH_OFFSET(Light, axis, 32); PH_OFFSET(Light, spotOuter, 44); PH_OFFSET(Light, vectorU, 48);

@@ -1,7 +1,8 @@
 // The bounding volume hierarchy against brute force: the nearest hit of random rays, and whether
 // shadow rays are blocked, equal testing every primitive one by one, over random triangle soups
-// (with spheres, quads and planes among them) and over every shipped scene. And the hierarchy's
-// shape: every primitive in exactly one leaf, every child's box holding its primitives.
+// (with spheres, quads and planes among them), over every shipped scene and at the ends of the
+// float range. And the hierarchy's shape: every primitive in exactly one leaf, every child's
+// quantized box holding its primitives.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -80,7 +81,9 @@ int compareWithBruteForce(const Scene& scene, int rays, std::uint32_t seed) {
     return differing;
 }
 
-Scene randomSoup(std::size_t triangles, std::uint32_t seed) {
+// Triangles, a few spheres and quads and a plane in a cube of side 2 about the origin, the whole
+// scene then moved by x → scale · x + offset.
+Scene randomSoup(std::size_t triangles, std::uint32_t seed, float scale = 1.0f, glm::vec3 offset = glm::vec3(0.0f)) {
     std::mt19937 random(seed);
     std::uniform_real_distribution<float> u(-1.0f, 1.0f);
     Scene s;
@@ -96,14 +99,19 @@ Scene randomSoup(std::size_t triangles, std::uint32_t seed) {
         mesh.triangles.emplace_back(v, v + 1, v + 2);
         mesh.materials.push_back(m);
     }
-    s.addMesh(mesh, glm::mat4(1.0f));
+    s.addMesh(mesh, glm::mat4(glm::vec4(scale, 0, 0, 0), glm::vec4(0, scale, 0, 0), glm::vec4(0, 0, scale, 0),
+                              glm::vec4(offset, 1.0f)));
     for (int i = 0; i < 5; ++i) {
-        s.addSphere(glm::vec3(u(random), u(random), u(random)), 0.1f + 0.2f * std::abs(u(random)), m);
-        s.addQuad(glm::vec3(u(random), u(random), u(random)), glm::vec3(u(random), 0.3f, 0.1f),
-                  glm::vec3(0.1f, u(random), 0.4f), m);
+        glm::vec3 c(u(random), u(random), u(random));
+        float r = 0.1f + 0.2f * std::abs(u(random));
+        s.addSphere(scale * c + offset, scale * r, m);
+        glm::vec3 corner(u(random), u(random), u(random));
+        glm::vec3 edgeU(u(random), 0.3f, 0.1f);
+        glm::vec3 edgeV(0.1f, u(random), 0.4f);
+        s.addQuad(scale * corner + offset, scale * edgeU, scale * edgeV, m);
     }
-    s.addPlane(glm::vec3(0.0f, -1.5f, 0.0f), glm::vec3(0.1f, 1.0f, 0.0f), m);
-    s.addPointLight(glm::vec3(0.0f, 3.0f, 0.0f), glm::vec3(1.0f));
+    s.addPlane(scale * glm::vec3(0.0f, -1.5f, 0.0f) + offset, glm::vec3(0.1f, 1.0f, 0.0f), m);
+    s.addPointLight(scale * glm::vec3(0.0f, 3.0f, 0.0f) + offset, glm::vec3(1.0f));
     s.finalize();
     return s;
 }
@@ -113,6 +121,23 @@ TEST(Bvh, TraversalEqualsBruteForceOnRandomSoups) {
         SCOPED_TRACE(std::to_string(n) + " triangles");
         Scene s = randomSoup(n, std::uint32_t(n) + 1);
         EXPECT_EQ(compareWithBruteForce(s, n > 10000 ? 2000 : 20000, 7), 0);
+    }
+}
+
+// The quantized boxes where float steps are coarse or fine: large coordinates, tiny triangles, and
+// small triangles far from the origin (not so small there that the intersection test itself
+// loses them: a triangle a few float steps wide seen from afar is hit by rays that miss it).
+TEST(Bvh, TraversalEqualsBruteForceAtLargeAndSmallScales) {
+    struct Case {
+        float scale;
+        glm::vec3 offset;
+    };
+    for (Case c : {Case{1e8f, glm::vec3(0.0f)}, Case{1e-6f, glm::vec3(0.0f)}, Case{1e-2f, glm::vec3(100.0f, -50.0f, 30.0f)},
+                   Case{1.0f, glm::vec3(3e3f, -2e3f, 1e3f)}}) {
+        SCOPED_TRACE("scale " + std::to_string(c.scale) + ", offset x " + std::to_string(c.offset.x));
+        Scene s = randomSoup(3000, 11, c.scale, c.offset);
+        EXPECT_EQ(s.droppedTriangles, 0u);
+        EXPECT_EQ(compareWithBruteForce(s, 4000, 5), 0);
     }
 }
 
@@ -129,8 +154,7 @@ TEST(Bvh, TraversalEqualsBruteForceOnEveryShippedScene) {
 }
 
 // Every primitive in exactly one leaf, inside every box on its way from the root.
-TEST(Bvh, EveryPrimitiveOnceInsideItsBoxes) {
-    Scene s = randomSoup(5000, 9);
+void expectEveryPrimitiveOnceInsideItsBoxes(const Scene& s) {
     ASSERT_FALSE(s.bvhNodes.empty());
     std::vector<int> seen(s.spheres.size() + s.quads.size() + s.triangles.size(), 0);
     auto slot = [&](std::uint32_t ref) {
@@ -159,32 +183,55 @@ TEST(Bvh, EveryPrimitiveOnceInsideItsBoxes) {
     };
     std::vector<std::uint32_t> stack{0};
     std::size_t outside = 0;
+    std::size_t gaps = 0;  // a child after an empty slot
     while (!stack.empty()) {
-        const BvhNode& n = s.bvhNodes[stack.back()];
+        const WideBvhNode& n = s.bvhNodes[stack.back()];
         stack.pop_back();
-        for (int c = 0; c < 2; ++c) {
-            glm::vec3 lo = c ? n.lowerB : n.lowerA;
-            glm::vec3 hi = c ? n.upperB : n.upperA;
-            std::uint32_t count = c ? n.countB : n.countA;
-            std::uint32_t child = c ? n.childB : n.childA;
-            if (lo.x == FLOAT_MAX) {
+        glm::vec3 scale = wideScale(n.scales);
+        bool empty = false;
+        for (std::uint32_t c = 0; c < BVH_WIDTH; ++c) {
+            std::uint32_t kind = (n.kinds >> (8 * c)) & 0xffu;
+            if (kind == WIDE_CHILD_EMPTY) {
+                empty = true;
                 continue;
             }
-            if (count == 0) {
-                stack.push_back(child);
+            gaps += empty ? 1 : 0;
+            glm::vec3 q0(float((n.lowerX >> (8 * c)) & 0xffu), float((n.lowerY >> (8 * c)) & 0xffu), float((n.lowerZ >> (8 * c)) & 0xffu));
+            glm::vec3 q1(float((n.upperX >> (8 * c)) & 0xffu), float((n.upperY >> (8 * c)) & 0xffu), float((n.upperZ >> (8 * c)) & 0xffu));
+            glm::vec3 lo = n.origin + q0 * scale;
+            glm::vec3 hi = n.origin + q1 * scale;
+            if (kind == WIDE_CHILD_INNER) {
+                ASSERT_LT(n.children[c], s.bvhNodes.size());
+                stack.push_back(n.children[c]);
                 continue;
             }
-            for (std::uint32_t k = child; k < child + count; ++k) {
+            ASSERT_LE(kind, BVH_LEAF_MAX);
+            for (std::uint32_t k = n.children[c]; k < n.children[c] + kind; ++k) {
                 seen[slot(s.primitiveRefs[k])] += 1;
                 outside += inside(s.primitiveRefs[k], lo, hi) ? 0 : 1;
             }
         }
     }
+    EXPECT_EQ(gaps, 0u);
     EXPECT_EQ(outside, 0u);
     EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), std::ptrdiff_t(seen.size()));
-    EXPECT_LT(s.bvh.depth, BVH_STACK_SIZE);
-    std::printf("bvh: %u primitives, %u nodes, %u leaves, depth %u, SAH cost %.1f\n", s.bvh.primitives, s.bvh.nodes,
-                s.bvh.leaves, s.bvh.depth, s.bvh.sahCost);
+    EXPECT_LE(s.bvh.stack, BVH_STACK_SIZE);
+    EXPECT_EQ(s.bvh.wideNodes, s.bvhNodes.size());
+    // Four children a node where there are enough (a binary node whose children are both leaves
+    // opens no further: about half as many nodes).
+    EXPECT_LT(s.bvh.wideNodes, s.bvh.nodes * 2 / 3);
+    std::printf("bvh: %u primitives, %u binary nodes, %u leaves, depth %u, SAH cost %.1f; %u wide nodes, depth %u, stack "
+                "%u, SAH cost %.1f\n",
+                s.bvh.primitives, s.bvh.nodes, s.bvh.leaves, s.bvh.depth, s.bvh.sahCost, s.bvh.wideNodes, s.bvh.wideDepth,
+                s.bvh.stack, s.bvh.wideSahCost);
+}
+
+TEST(Bvh, EveryPrimitiveOnceInsideItsBoxes) {
+    expectEveryPrimitiveOnceInsideItsBoxes(randomSoup(5000, 9));
+    // Large and tiny, and boxes a few float steps wide.
+    expectEveryPrimitiveOnceInsideItsBoxes(randomSoup(3000, 11, 1e8f));
+    expectEveryPrimitiveOnceInsideItsBoxes(randomSoup(3000, 11, 1e-6f));
+    expectEveryPrimitiveOnceInsideItsBoxes(randomSoup(3000, 11, 1e-3f, glm::vec3(100.0f, -50.0f, 30.0f)));
 }
 
 // The hierarchy depends on the scene alone: built on one thread (every chunk in order) and on all,
@@ -198,7 +245,7 @@ TEST(Bvh, SameBytesOnAnyThreadCount) {
     for (const Scene& s : scenes) {
         SCOPED_TRACE(std::to_string(s.triangles.size()) + " triangles");
         setThreadLimit(1);
-        std::vector<BvhNode> serialNodes;
+        std::vector<WideBvhNode> serialNodes;
         std::vector<std::uint32_t> serialRefs;
         BvhStats serial = buildBvh(s, serialNodes, serialRefs);
         setThreadLimit(0);
@@ -206,19 +253,21 @@ TEST(Bvh, SameBytesOnAnyThreadCount) {
                     workerThreads(), serial.nodes, serial.sahCost);
         ASSERT_GT(serial.nodes, 1000u);
         for (int repeat = 0; repeat < 3; ++repeat) {
-            std::vector<BvhNode> nodes;
+            std::vector<WideBvhNode> nodes;
             std::vector<std::uint32_t> refs;
             BvhStats parallel = buildBvh(s, nodes, refs);
             ASSERT_EQ(nodes.size(), serialNodes.size());
             ASSERT_EQ(refs.size(), serialRefs.size());
-            EXPECT_EQ(std::memcmp(nodes.data(), serialNodes.data(), nodes.size() * sizeof(BvhNode)), 0);
+            EXPECT_EQ(std::memcmp(nodes.data(), serialNodes.data(), nodes.size() * sizeof(WideBvhNode)), 0);
             EXPECT_EQ(std::memcmp(refs.data(), serialRefs.data(), refs.size() * sizeof(std::uint32_t)), 0);
             EXPECT_EQ(parallel.sahCost, serial.sahCost);
             EXPECT_EQ(parallel.depth, serial.depth);
             EXPECT_EQ(parallel.leaves, serial.leaves);
+            EXPECT_EQ(parallel.wideSahCost, serial.wideSahCost);
+            EXPECT_EQ(parallel.stack, serial.stack);
         }
         // And the scene's own hierarchy (built by finalize, on all threads) is the same.
-        EXPECT_EQ(std::memcmp(s.bvhNodes.data(), serialNodes.data(), serialNodes.size() * sizeof(BvhNode)), 0);
+        EXPECT_EQ(std::memcmp(s.bvhNodes.data(), serialNodes.data(), serialNodes.size() * sizeof(WideBvhNode)), 0);
     }
 }
 
@@ -234,7 +283,7 @@ TEST(Bvh, CoincidentPrimitivesStayShallow) {
     s.addMesh(mesh, glm::mat4(1.0f));
     s.addPointLight(glm::vec3(0, 0, 3), glm::vec3(1.0f));
     s.finalize();
-    EXPECT_LT(s.bvh.depth, BVH_STACK_SIZE);
+    EXPECT_LE(s.bvh.stack, BVH_STACK_SIZE);
     EXPECT_EQ(compareWithBruteForce(s, 50, 1), 0);
 }
 

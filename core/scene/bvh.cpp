@@ -49,7 +49,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 constexpr int kBins = 8;                        // per axis (tinybvh's BuildAVX: 8)
-constexpr std::uint32_t kMaxLeaf = 4;
+constexpr std::uint32_t kMaxLeaf = BVH_LEAF_MAX;
 constexpr float kTraversalCost = 1.0f;          // of visiting a node, relative to testing a primitive
 constexpr std::uint32_t kChunk = 1u << 14;      // primitives per chunk of a top level's partition
 constexpr std::uint32_t kTopSamples = 1024;     // a top node bins a regular sample of this many
@@ -1037,7 +1037,7 @@ private:
 
 }  // namespace
 
-BvhStats buildBvh(const Scene& scene, std::vector<BvhNode>& nodes, std::vector<std::uint32_t>& refs) {
+BvhStats buildBinaryBvh(const Scene& scene, std::vector<BvhNode>& nodes, std::vector<std::uint32_t>& refs) {
     Clock::time_point start = Clock::now();
     nodes.clear();
     refs.clear();
@@ -1168,11 +1168,6 @@ BvhStats buildBvh(const Scene& scene, std::vector<BvhNode>& nodes, std::vector<s
     stats.sahCost = kTraversalCost + sum / rootArea;
     stats.nodes = std::uint32_t(nodes.size());
     stats.flattenSeconds = secondsSince(flattenStart);
-    if (stats.depth >= BVH_STACK_SIZE) {
-        throw InputError("the scene's bounding volume hierarchy is " + std::to_string(stats.depth) +
-                         " levels deep, more than the " + std::to_string(BVH_STACK_SIZE) +
-                         " its traversal can follow (many primitives in one place?)");
-    }
     stats.buildSeconds = secondsSince(start);
     return stats;
 }

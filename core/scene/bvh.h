@@ -1,11 +1,12 @@
 // The bounding volume hierarchy over a scene's bounded primitives (spheres, quads, triangles;
 // planes are infinite and stay apart), built on the host and traversed by shared/intersect.h on
-// every backend. Binned SAH (Wald, "On fast Construction of SAH-based Bounding Volume
-// Hierarchies", 2007): at every node, primitives are binned by centroid into 8 bins along each
-// axis that may hold the split and split where the surface area heuristic is lowest; leaves hold
-// at most 4 primitives. The top levels are split one level at a time on all threads, the
-// subtrees below them each by one thread (core/scene/bvh.cpp says how). The result depends on
-// the scene alone: the same nodes and references on any number of threads.
+// every backend. Built binary first: binned SAH (Wald, "On fast Construction of SAH-based
+// Bounding Volume Hierarchies", 2007): at every node, primitives are binned by centroid into 8
+// bins along each axis that may hold the split and split where the surface area heuristic is
+// lowest; leaves hold at most 4 primitives. The top levels are split one level at a time on all
+// threads, the subtrees below them each by one thread (core/scene/bvh.cpp says how). Then
+// collapsed into the four-wide, quantized nodes that the traversal reads (bvh_wide.cpp). The
+// result depends on the scene alone: the same nodes and references on any number of threads.
 #pragma once
 
 #include <cstdint>
@@ -17,25 +18,48 @@ namespace photon {
 
 struct Scene;
 
+// A node of the binary hierarchy, with both children's boxes. A child is an inner node (count 0:
+// `child` is its node) or a leaf (count primitives from the references' `child`); an absent child's
+// box is a point at FLOAT_MAX.
+struct BvhNode {
+    glm::vec3 lowerA; std::uint32_t childA;
+    glm::vec3 upperA; std::uint32_t countA;
+    glm::vec3 lowerB; std::uint32_t childB;
+    glm::vec3 upperB; std::uint32_t countB;
+};
+
 struct BvhStats {
     std::uint32_t primitives = 0;  // bounded primitives in the hierarchy
-    std::uint32_t nodes = 0;       // BvhNodes (each holds two children)
+    std::uint32_t nodes = 0;       // binary nodes (each holds two children)
     std::uint32_t leaves = 0;
-    std::uint32_t depth = 0;       // inner nodes on the longest path from the root
-    double sahCost = 0.0;          // Σ area(inner)/area(root) + Σ area(leaf)/area(root)·primitives
+    std::uint32_t depth = 0;       // binary inner nodes on the longest path from the root
+    double sahCost = 0.0;          // of the binary tree: Σ area(inner)/area(root) + Σ area(leaf)/area(root)·primitives
+    std::uint32_t wideNodes = 0;   // WideBvhNodes (each holds four children)
+    std::uint32_t wideDepth = 0;   // wide inner nodes on the longest path from the root
+    std::uint32_t stack = 0;       // the most entries the wide traversal's stack can hold at once
+    double wideSahCost = 0.0;      // of the wide tree, over its quantized boxes
     double buildSeconds = 0.0;
     // Where buildSeconds went: the primitives' centroids; the top levels (split across all
     // threads); the subtrees below them (one thread each); the nodes gathered into their array
-    // and measured.
+    // and measured; the binary tree collapsed into the wide one.
     double prepareSeconds = 0.0;
     double topSeconds = 0.0;
     double subtreeSeconds = 0.0;
     double flattenSeconds = 0.0;
+    double widenSeconds = 0.0;
 };
 
-// Builds the hierarchy of the scene's spheres, quads and triangles into `nodes` and `refs`
+// The binary hierarchy of the scene's spheres, quads and triangles into `nodes` and `refs`
 // (primitive references, kind << 30 | index). Empty outputs when there is no bounded primitive.
-// Throws InputError if the hierarchy would be deeper than the traversal's stack (BVH_STACK_SIZE).
-BvhStats buildBvh(const Scene& scene, std::vector<BvhNode>& nodes, std::vector<std::uint32_t>& refs);
+BvhStats buildBinaryBvh(const Scene& scene, std::vector<BvhNode>& nodes, std::vector<std::uint32_t>& refs);
+
+// The binary hierarchy collapsed into wide nodes (the root first), each taking the children of
+// its binary node and replacing the largest inner one by its own two until it has four; boxes
+// quantized outwards. Sets the wide fields of `stats`. Throws InputError if the traversal's
+// stack (BVH_STACK_SIZE) could overflow.
+void widenBvh(const std::vector<BvhNode>& binary, std::vector<WideBvhNode>& wide, BvhStats& stats);
+
+// The traversed hierarchy: buildBinaryBvh, then widenBvh.
+BvhStats buildBvh(const Scene& scene, std::vector<WideBvhNode>& nodes, std::vector<std::uint32_t>& refs);
 
 }  // namespace photon

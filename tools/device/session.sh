@@ -3,7 +3,7 @@
 # the checkouts) from the project root, with the
 # binaries of `cmake --preset device && cmake --build --preset device` carried in build-device/bin
 # and .devlibs/ prepared by tools/device/prepare.sh. Writes logs and JSON under $OUT.
-#   tools/device/session.sh tests sanitize sanitize-new environment frames meshes converge spectral compact pictures bundle-all
+#   tools/device/session.sh tests sanitize sanitize-new environment frames meshes wide converge spectral compact pictures bundle-all
 set -uo pipefail
 source .devlibs/setup.sh >/dev/null
 bin=build-device/bin
@@ -128,6 +128,19 @@ for step in "$@"; do
         --resolutions 1920x1080 --photons 1000000 --frames 30 --primary-rays --json "$out/meshes.json" | tee "$out/meshes.log"
       $bin/photon-bench --scenes-dir scenes --backends cuda,vulkan --scenes bunny,scenes/textured.glb,mesh-glass:1000000 \
         --resolutions 1920x1080 --photons 1000000 --frames 50 --primary-rays --json "$out/mesh-scenes.json" | tee "$out/mesh-scenes.log" ;;
+    wide)
+      # Issue 19 item 4: the four-wide BVH (photon-bench) against the binary one it replaced
+      # (photon-bench-binary, carried beside it), side by side: the mesh sweep and the mesh scenes,
+      # primary rays and photon paths, on both GPU backends.
+      for b in photon-bench-binary photon-bench; do
+        echo "== $b" | tee -a "$out/wide.log"
+        $bin/$b --scenes-dir scenes --backends cuda,vulkan --scenes mesh:10000,mesh:100000,mesh:1000000,mesh:10000000 \
+          --resolutions 1920x1080 --photons 1000000 --frames 30 --primary-rays --json "$out/wide-$b.json" 2>&1 \
+          | grep -v "first image" | tee -a "$out/wide.log"
+        $bin/$b --scenes-dir scenes --backends cuda,vulkan --scenes bunny,scenes/textured.glb,mesh-glass:1000000 \
+          --resolutions 1920x1080 --photons 1000000 --frames 50 --primary-rays --json "$out/wide-scenes-$b.json" 2>&1 \
+          | grep -v "first image" | tee -a "$out/wide.log"
+      done ;;
     frames)
       # The analytic Cornell box's frame (no regression), each estimator, and the cost of --deterministic.
       $bin/photon-bench --backends cuda,vulkan --resolutions 1920x1080,3840x2160 --photons 1000000 --frames 50 \
@@ -224,6 +237,8 @@ for step in "$@"; do
         --vary radius=0.04 --vary caustic_radius=0.02 2>&1 | grep -v "first image" | tee -a "$out/table.log"
       $bin/photon-bench --scenes-dir scenes --backends cuda,vulkan --scenes bunny,mesh:1000000 --resolutions 1920x1080 \
         --photons 1000000 --frames 50 --primary-rays 2>&1 | grep -v "first image" | tee -a "$out/table.log" ;;
+    sanitize-wide)
+      sanitize wide scenes/bunny.json scenes/textured.glb "scenes/gem.json --spectral" ;;
     sanitize-compact)
       sanitize compact scenes/cornell.json "scenes/cornell.json --deterministic" scenes/gem.json "scenes/caustic.json --estimator knn" ;;
     pictures)
