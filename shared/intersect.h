@@ -418,6 +418,11 @@ PH_FN bool traceClosest(BUF_PARAM PH_IN(Ray) ray, PH_OUT(Hit) hit) {
     hit.b1 = r.b1;
     hit.b2 = r.b2;
     hit.position = ray.origin + r.t * ray.direction;
+    // A surface so far away that the point on it overflows the float range (a plane through
+    // 1e38, seen through a mirror) is out of reach: the ray has left the scene.
+    if (!(abs(hit.position.x) <= FLOAT_MAX && abs(hit.position.y) <= FLOAT_MAX && abs(hit.position.z) <= FLOAT_MAX)) {
+        return false;
+    }
     primitiveSurface(BUF_ARG hit.kind, hit.index, hit.position, hit.normal, hit.material);
     return true;
 }
