@@ -165,10 +165,10 @@ struct Pending {
     std::uint32_t depth;
 };
 
-// Makes wide node `p` into nodes[p.wide], placing its inner children at the end of `nodes` (at
-// `base` + their index there) and adding them to `queue`.
-void makeNode(const std::vector<BvhNode>& binary, Pending p, std::uint32_t base, std::vector<WideBvhNode>& nodes,
-              std::vector<Pending>& queue, WideMeasure& m) {
+// Makes wide node `p` into nodes[p.wide], placing its inner children at the end of `nodes` and
+// adding them to `queue`.
+void makeNode(const std::vector<BvhNode>& binary, Pending p, std::vector<WideBvhNode>& nodes, std::vector<Pending>& queue,
+              WideMeasure& m) {
     Child children[BVH_WIDTH];
     int k = collapse(binary, p.binary, children);
     WideBvhNode n{};
@@ -190,7 +190,7 @@ void makeNode(const std::vector<BvhNode>& binary, Pending p, std::uint32_t base,
             auto at = std::uint32_t(nodes.size());
             nodes.emplace_back();
             queue.push_back(Pending{c.index, at, below, p.depth + 1});
-            n.children[i] = base + at;
+            n.children[i] = at;
             n.kinds |= WIDE_CHILD_INNER << shift;
         } else {
             if (c.count > BVH_LEAF_MAX || c.index > WIDE_LEAF_FIRST_MASK) {
@@ -227,7 +227,7 @@ void widenBvh(const std::vector<BvhNode>& binary, std::vector<WideBvhNode>& wide
     wide.emplace_back();
     std::size_t next = 0;
     while (next < queue.size() && queue.size() - next < kSubtrees) {
-        makeNode(binary, queue[next], 0, wide, queue, top);
+        makeNode(binary, queue[next], wide, queue, top);
         ++next;
     }
     // The waiting nodes' subtrees, each into its own array, then after the top in order.
@@ -245,7 +245,7 @@ void widenBvh(const std::vector<BvhNode>& binary, std::vector<WideBvhNode>& wide
             local.push_back(Pending{roots[r].binary, 0, roots[r].stack, roots[r].depth});
             nodes.emplace_back();
             for (std::size_t i = 0; i < local.size(); ++i) {
-                makeNode(binary, local[i], 0, nodes, local, measures[r]);
+                makeNode(binary, local[i], nodes, local, measures[r]);
             }
         }
     });
