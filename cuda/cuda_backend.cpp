@@ -8,7 +8,6 @@
 #include "cell_scan.h"
 #include "cuda_check.h"
 #include "device_memory.h"
-#include "photon_sort.h"
 #include "shared/photon_map.h"
 
 namespace photon {
@@ -81,13 +80,8 @@ public:
     }
 
 protected:
-    // The scan's storage, and the deterministic build's sort of the larger map.
-    void adjustPlan(BufferPlan& plan, const PhotonBudget& budget) override {
-        plan.scratchBytes = 64u << 20;
-        if (settings().deterministic) {
-            plan.scratchBytes += PhotonSort::bytesFor(budget.largestCapacity());
-        }
-    }
+    // The scan's storage.
+    void adjustPlan(BufferPlan& plan, const PhotonBudget&) override { plan.scratchBytes = 64u << 20; }
 
     void uploadScene(const Scene& scene, const BufferPlan& plan) override {
         forEachSceneBuffer(scene, plan, [&](std::uint32_t binding, const void* data, std::uint64_t bytes) {
@@ -191,16 +185,12 @@ public:
     }
 
 private:
-    // Each map's photons into cell order: count, CUB's scan, then the scatter, or under
-    // --deterministic CUB's sort of (cell, id) keys.
+    // Each map's photons into cell order: count, CUB's scan, then the scatter, or with
+    // deterministic maps the scatter and each cell put in canonical order.
     void buildGrid(const FrameParams& params) {
         const Bindings& b = bindings_;
         const StageKernels& kernels = *kernels_;
         bool deterministic = (params.flags & FLAG_DETERMINISTIC) != 0u;
-        if (deterministic) {
-            // CUB's sort takes its item count on the host: this build waits for the photon pass.
-            readCounters();
-        }
         for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
             const GridParams& g = params.grids[m];
             if (g.photonCapacity == 0) {
@@ -209,13 +199,7 @@ private:
             kernels.countCells(b, m, config_, stream_);
             scan_.exclusiveSum(b.cellCounts + g.cellOffset, b.cellStart + g.cellOffset, g.cellCount + 1, stream_);
             if (deterministic) {
-                std::uint32_t stored = std::min(counters_[COUNTER_STORED + m], g.photonCapacity);
-                sort_.reserve(std::max(stored, 1u));
-                kernels.sortKeys(b, m, stored, sort_.keys(), sort_.indices(), config_, stream_);
-                const std::uint32_t* order = sort_.sort(stored, int(photonSortKeyBits(params, m)), stream_);
-                kernels.placeSorted(b, m, stored, order, config_, stream_);
-                CUDA_CHECK(cudaMemsetAsync(b.cellCounts + g.cellOffset, 0, (g.cellCount + 1) * sizeof(std::uint32_t), stream_),
-                           "grid build (sort)");
+                kernels.orderPhotons(b, m, config_, stream_);
             } else {
                 kernels.scatterPhotons(b, m, config_, stream_);
             }
@@ -250,7 +234,6 @@ private:
 
     DeviceArray<unsigned char> buffers_[BINDING_COUNT];  // by binding (shared/bindings.h)
     CellScan scan_;
-    PhotonSort sort_;                                    // the deterministic build only
     PinnedArray<std::uint32_t> counters_;                // the last frame's counters
     PinnedArray<glm::vec4> hostPixels_;                  // image readbacks
 };

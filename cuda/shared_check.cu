@@ -36,10 +36,12 @@ __global__ void sharedCheck(Bindings bindings) {
     tracePhotonPath(bindings, i);
     countPhotonCell(bindings, MAP_GLOBAL, i);
     scatterPhoton(bindings, MAP_GLOBAL, i);
-    uvec2 key = photonSortKey(bindings, MAP_CAUSTIC, i);
+    scatterPhotonId(bindings, MAP_CAUSTIC, i);
+    rankInChunk(bindings, MAP_CAUSTIC, i);
+    mergeChunks(bindings, MAP_CAUSTIC, i);
     PhotonPath path = startPhotonPath(bindings, i);
     Photon p;
-    uint store = photonBounce(bindings, path, p) + key.x + photonSortKeyBits(bindings.params, MAP_GLOBAL);
+    uint store = photonBounce(bindings, path, p);
     bindings.hitPoints[i] = tracePixel(bindings, i);
     bindings.frameRadiance[i] = vec4(gatherPixel(bindings, i), float(store));
     bindings.accumulation[i] = accumulateMean(bindings.accumulation[i], bindings.frameRadiance[i], bindings.params.accumulated);

@@ -51,17 +51,20 @@ __global__ void scatterPhotonsKernel(const __grid_constant__ Bindings b, uint ma
     }
 }
 
-__global__ void sortKeysKernel(const __grid_constant__ Bindings b, uint map, uint n, std::uint64_t* keys, uint* indices) {
-    for (uint i = blockIdx.x * blockDim.x + threadIdx.x; i < n; i += gridDim.x * blockDim.x) {
-        uvec2 key = photonSortKey(b, map, i);
-        keys[i] = (std::uint64_t(key.y) << 32) | key.x;
-        indices[i] = i;
-    }
-}
+// The deterministic build's steps (photon_map.h), over the places of the stored photons.
+enum OrderStep : uint { kScatterIds, kRank, kMerge };
 
-__global__ void placeSortedKernel(const __grid_constant__ Bindings b, uint map, uint n, const uint* order) {
+template <OrderStep Step>
+__global__ void orderStepKernel(const __grid_constant__ Bindings b, uint map) {
+    uint n = storedPhotons(b, map);
     for (uint i = blockIdx.x * blockDim.x + threadIdx.x; i < n; i += gridDim.x * blockDim.x) {
-        placePhoton(b, map, i, order[i]);
+        if constexpr (Step == kScatterIds) {
+            scatterPhotonId(b, map, i);
+        } else if constexpr (Step == kRank) {
+            rankInChunk(b, map, i);
+        } else {
+            mergeChunks(b, map, i);
+        }
     }
 }
 
@@ -120,7 +123,7 @@ void tracePhotons(const Bindings& b, const LaunchConfig& c, cudaStream_t s) {
     }
 }
 
-// Run by the backend in its steps (countCells, its scan, scatterPhotons or the sort).
+// Run by the backend in its steps (countCells, its scan, then scatterPhotons or orderPhotons).
 constexpr StageLaunch buildGrid = nullptr;
 
 void countCells(const Bindings& b, std::uint32_t map, const LaunchConfig& c, cudaStream_t s) {
@@ -133,16 +136,13 @@ void scatterPhotons(const Bindings& b, std::uint32_t map, const LaunchConfig& c,
     CUDA_CHECK_LAUNCH("grid build (scatter)");
 }
 
-void sortKeys(const Bindings& b, std::uint32_t map, std::uint32_t count, std::uint64_t* keys, std::uint32_t* indices,
-              const LaunchConfig& c, cudaStream_t s) {
-    sortKeysKernel<<<c.gridBlocks, 256, 0, s>>>(b, map, count, keys, indices);
-    CUDA_CHECK_LAUNCH("grid build (sort keys)");
-}
-
-void placeSorted(const Bindings& b, std::uint32_t map, std::uint32_t count, const std::uint32_t* order,
-                 const LaunchConfig& c, cudaStream_t s) {
-    placeSortedKernel<<<c.gridBlocks, 256, 0, s>>>(b, map, count, order);
-    CUDA_CHECK_LAUNCH("grid build (place sorted)");
+void orderPhotons(const Bindings& b, std::uint32_t map, const LaunchConfig& c, cudaStream_t s) {
+    orderStepKernel<kScatterIds><<<c.gridBlocks, 256, 0, s>>>(b, map);
+    CUDA_CHECK_LAUNCH("grid build (scatter ids)");
+    orderStepKernel<kRank><<<c.gridBlocks, 256, 0, s>>>(b, map);
+    CUDA_CHECK_LAUNCH("grid build (rank)");
+    orderStepKernel<kMerge><<<c.gridBlocks, 256, 0, s>>>(b, map);
+    CUDA_CHECK_LAUNCH("grid build (merge)");
 }
 
 void tracePixels(const Bindings& b, const LaunchConfig& c, cudaStream_t s) {
@@ -203,8 +203,7 @@ const StageKernels PHOTON_KERNEL_TABLE = {
     {PH_STAGES(PH_STAGE_LAUNCH)},
     PHOTON_KERNEL_NAMESPACE::countCells,
     PHOTON_KERNEL_NAMESPACE::scatterPhotons,
-    PHOTON_KERNEL_NAMESPACE::sortKeys,
-    PHOTON_KERNEL_NAMESPACE::placeSorted,
+    PHOTON_KERNEL_NAMESPACE::orderPhotons,
     PHOTON_KERNEL_NAMESPACE::tracePrimaryRays,
 };
 

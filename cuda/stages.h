@@ -29,18 +29,14 @@ using StageLaunch = void (*)(const Bindings& b, const LaunchConfig& c, cudaStrea
 
 struct StageKernels {
     // By STAGE_*, each defined in stages.cu under its stage's name. The grid build's is null: the
-    // backend runs its steps (below) around CUB's scan and sort, whose storage it owns.
+    // backend runs its steps (below) around CUB's scan, whose storage it owns.
     StageLaunch stage[STAGE_COUNT];
     // Grid build, count: cell key of each stored photon of `map`, and photons per cell.
     void (*countCells)(const Bindings& b, std::uint32_t map, const LaunchConfig& c, cudaStream_t s);
     // Grid build, scatter: photons of `map` into cell order, from cellStart; leaves cellCounts at zero.
     void (*scatterPhotons)(const Bindings& b, std::uint32_t map, const LaunchConfig& c, cudaStream_t s);
-    // Grid build, deterministic: the (cell, id) sort key and index of each of `count` stored
-    // photons of `map`; and, once the keys are sorted, the photons in that order.
-    void (*sortKeys)(const Bindings& b, std::uint32_t map, std::uint32_t count, std::uint64_t* keys,
-                     std::uint32_t* indices, const LaunchConfig& c, cudaStream_t s);
-    void (*placeSorted)(const Bindings& b, std::uint32_t map, std::uint32_t count, const std::uint32_t* order,
-                        const LaunchConfig& c, cudaStream_t s);
+    // Grid build, deterministic: the scatter, then each cell in photon id order (photon_map.h).
+    void (*orderPhotons)(const Bindings& b, std::uint32_t map, const LaunchConfig& c, cudaStream_t s);
     // Not a stage: photon-bench's probe of the traversal alone (tracePrimaryRay), adding the
     // pixels whose ray hit something to *hits.
     void (*tracePrimaryRays)(const Bindings& b, std::uint32_t* hits, const LaunchConfig& c, cudaStream_t s);

@@ -40,10 +40,12 @@ void main() {
     traceSharedPhotonPath(i);
     countPhotonCell(MAP_GLOBAL, i);
     scatterPhoton(MAP_GLOBAL, i);
-    uvec2 key = photonSortKey(MAP_CAUSTIC, i);
+    scatterPhotonId(MAP_CAUSTIC, i);
+    rankInChunk(MAP_CAUSTIC, i);
+    mergeChunks(MAP_CAUSTIC, i);
     PhotonPath path = startPhotonPath(i);
     Photon p;
-    uint store = photonBounce(path, p) + key.x + photonSortKeyBits(params, MAP_GLOBAL);
+    uint store = photonBounce(path, p);
     hitPoints[i] = tracePixel(i);
     frameRadiance[i] = vec4(gatherPixel(i) + gatherStage(i, ESTIMATOR_SPPM, GLOBAL_DIRECT, true), float(store));
     accumulation[i] = accumulatePixel(i);

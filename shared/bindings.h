@@ -42,7 +42,8 @@
     X(SPPM_PIXELS, 23u, SppmPixel, sppmPixels, RW, SPPM_PIXEL)              \
     X(INFINITE_LIGHTS, 24u, Light, infiniteLights, RO, SCENE)                  \
     X(ENVIRONMENT_TEXELS, 25u, uint, environmentTexels, RO, SCENE)             \
-    X(ENVIRONMENT_CDF, 26u, float, environmentCdf, RO, SCENE)
+    X(ENVIRONMENT_CDF, 26u, float, environmentCdf, RO, SCENE)                  \
+    X(PHOTON_ORDER, 27u, uint, photonOrder, RW, ORDERED_PHOTON)
 
 PH_NAMESPACE_BEGIN
 
@@ -53,7 +54,8 @@ PH_CONST uint BUFFER_PER_CELL = 2u;     // PhotonBudget::totalCellEntries(): bot
 PH_CONST uint BUFFER_PER_PIXEL = 3u;    // width × height
 PH_CONST uint BUFFER_PER_COUNTER = 4u;  // COUNTER_COUNT
 PH_CONST uint BUFFER_PER_SPPM_PIXEL = 5u;  // width × height with the sppm estimator, else one element
-PH_CONST uint BUFFER_SIZE_CLASS_COUNT = 6u;
+PH_CONST uint BUFFER_PER_ORDERED_PHOTON = 6u;  // ORDER_ARRAYS per photon for deterministic maps, else one
+PH_CONST uint BUFFER_SIZE_CLASS_COUNT = 7u;
 
 PH_CONST uint BINDING_PARAMS = 0u;  // FrameParams (uniform)
 #define PH_BINDING_CONSTANT(NAME, b, T, name, access, sizeClass) PH_CONST uint BINDING_##NAME = b;

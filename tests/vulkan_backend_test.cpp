@@ -25,6 +25,7 @@
 #include "backend_compare.h"
 #include "core/loaders/scene_loader.h"
 #include "core/system/error.h"
+#include "shared/photon_map.h"
 #include "test_util.h"
 #include "vulkan/context.h"
 #include "vulkan/vulkan_backend.h"
@@ -381,12 +382,22 @@ TEST_F(VulkanBackendTest, TooLargeRequestsAreRefusedBeforeWork) {
 
 // Deterministic photon maps: on lavapipe the same photons in the same order as the CPU's, so that
 // subsampled gathers agree too; on every device the same seed twice gives the same image bit for bit.
+// Radii of a third of the box give cells of thousands of photons: cells of many chunks to merge.
 TEST_F(VulkanBackendTest, DeterministicMapsEqualTheCpuInOrder) {
+    for (float radius : {0.0f, 1.2f}) {
     for (const Scene& scene : {defaultScene(), featureScene()}) {
         RenderSettings settings = smallSettings();
         settings.gatherBudget = 16;
         settings.deterministic = true;
+        if (radius > 0.0f) {
+            settings.radius = radius;
+            settings.causticRadius = radius;
+        }
         render(scene, settings, 2);
+        if (radius > 0.0f) {
+            GridStats grid = gridStats(vulkan_->readPhotonMaps().cellStart[MAP_GLOBAL]);
+            EXPECT_GT(grid.maxPerCell, 2 * ORDER_CHUNK) << scene.name << ": no cell of three chunks";
+        }
         if (lavapipe_) {
             // Elsewhere the device's own arithmetic (FMA contraction) moves photons a little.
             test::expectIdenticalPhotonMaps(vulkan_->readPhotonMaps(), cpu_->readPhotonMaps());
@@ -395,6 +406,7 @@ TEST_F(VulkanBackendTest, DeterministicMapsEqualTheCpuInOrder) {
         Image first = vulkan_->image();
         render(scene, settings, 2);
         EXPECT_EQ(test::differingPixels(first, vulkan_->image()), 0u) << scene.name << ": the same seed twice";
+    }
     }
 }
 

@@ -51,22 +51,10 @@ MemoryLimits VulkanBackend::memoryLimits() { return deviceMemoryLimits(*context_
 
 // The counters buffer also holds the grid build's indirect-dispatch arguments, and cellStart the
 // upper levels of the scan.
-// The deterministic build's sort needs buffers of its own.
 void VulkanBackend::adjustPlan(BufferPlan& plan, const PhotonBudget& budget) {
     plan.elements[BINDING_COUNTERS] = COUNTER_WORDS;
     plan.elements[BINDING_CELL_START] = planScan(budget, pipelines_.scanGroupSize).cellStartEntries;
     plan.scratchBytes = 0;
-    if (settings().deterministic) {
-        std::uint32_t capacity = budget.largestCapacity();
-        VkDeviceSize largest = PhotonSort::largestBufferFor(capacity);
-        VkDeviceSize limit = context_->properties.limits.maxStorageBufferRange;
-        if (largest > limit) {
-            throw InputError("deterministic photon maps: the sort's keys need " + formatMiB(largest) + ", more than the " +
-                             formatMiB(limit) + " one buffer may span on " + context_->properties.deviceName +
-                             " (maxStorageBufferRange); lower the photons per frame (--photons)");
-        }
-        plan.scratchBytes = PhotonSort::bytesFor(capacity);
-    }
 }
 
 // Scene arrays to their bindings; an empty array still gets a buffer of one zeroed element.
@@ -82,12 +70,6 @@ void VulkanBackend::uploadScene(const Scene& scene, const BufferPlan& plan) {
 // photon map keeps the accumulated image.
 void VulkanBackend::allocate(const BufferPlan& plan, const PhotonBudget& budget, std::uint32_t, std::uint32_t) {
     scan_ = planScan(budget, pipelines_.scanGroupSize);
-    if (settings().deterministic) {
-        if (!sort_) {
-            sort_ = std::make_unique<PhotonSort>(*context_, pipelines_);
-        }
-        sort_->reserve(budget.largestCapacity());
-    }
     ensureBuffer(BINDING_PARAMS, plan.bytes(BINDING_PARAMS));
     for (const BufferInfo& info : kBuffers) {
         if (info.size != BUFFER_PER_SCENE) {

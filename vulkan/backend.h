@@ -15,7 +15,6 @@
 #include "context.h"
 #include "core/frame/backend.h"
 #include "memory.h"
-#include "photon_sort.h"
 #include "pipelines.h"
 #include "scan.h"
 
@@ -88,7 +87,6 @@ private:
     // Buffers by binding number (shared/bindings.h), device-local.
     Buffer buffers_[BINDING_COUNT];
     ScanPlan scan_;              // the levels of the cell-count scan, in cellStart
-    std::unique_ptr<PhotonSort> sort_;  // the deterministic build's, made on first use
 
     // The frame beginStages() records and endStages() submits.
     struct Frame {

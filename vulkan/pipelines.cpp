@@ -21,7 +21,10 @@ namespace spirv {
 #include "gridCount.spv.h"
 #include "gridScan.spv.h"
 #include "gridScanAdd.spv.h"
+#include "gridMerge.spv.h"
+#include "gridRank.spv.h"
 #include "gridScatter.spv.h"
+#include "gridScatterIds.spv.h"
 #include "tracePhotons.spv.h"
 #include "tracePixels.spv.h"
 }  // namespace spirv
@@ -39,7 +42,7 @@ ShaderCode code(const std::uint32_t (&words)[N]) {
 }
 
 constexpr const char* kShaderNames[kShaderCount] = {"tracePhotons", "gridArgs", "gridCount", "gridScan", "gridScanAdd",
-                                                   "gridScatter", "tracePixels", "gather", "accumulate"};
+                                                   "gridScatter", "gridScatterIds", "gridRank", "gridMerge", "tracePixels", "gather", "accumulate"};
 
 ShaderCode shaderCode(Shader shader) {
     switch (shader) {
@@ -49,6 +52,9 @@ ShaderCode shaderCode(Shader shader) {
         case kGridScan: return code(spirv::gridScan);
         case kGridScanAdd: return code(spirv::gridScanAdd);
         case kGridScatter: return code(spirv::gridScatter);
+        case kGridScatterIds: return code(spirv::gridScatterIds);
+        case kGridRank: return code(spirv::gridRank);
+        case kGridMerge: return code(spirv::gridMerge);
         case kTracePixels: return code(spirv::tracePixels);
         case kGather: return code(spirv::gather);
         case kAccumulate: return code(spirv::accumulate);

@@ -19,6 +19,9 @@ enum Shader : std::uint32_t {
     kGridScan,      //   one level of the exclusive scan of the counts
     kGridScanAdd,   //   adds the scanned block totals back down a level
     kGridScatter,   //   photons into cell order
+    kGridScatterIds,  //   or, for deterministic maps, (id, index) pairs into cell order,
+    kGridRank,        //   each ranked within its chunk of the cell,
+    kGridMerge,       //   and the chunks of the larger cells merged
     kTracePixels,   // STAGE_TRACE_PIXELS
     kGather,        // STAGE_GATHER
     kAccumulate,    // STAGE_ACCUMULATE

@@ -127,11 +127,14 @@ void VulkanBackend::buildGrid(VkCommandBuffer cmd, const FrameParams& params) {
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
 
     if ((params.flags & FLAG_DETERMINISTIC) != 0u) {
-        // Sorting (cell key, id) instead of the scatter: each cell's photons in canonical order.
-        for (std::uint32_t map = 0; map < MAP_COUNT; ++map) {
-            sort_->record(cmd, params, map, buffers_[BINDING_CELL_COUNTS].handle());
+        // Each cell's photons in canonical order (shared/photon_map.h): each step reads what the
+        // one before wrote.
+        dispatchPerMap(kGridScatterIds);
+        for (Shader step : {kGridRank, kGridMerge}) {
+            memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+            dispatchPerMap(step);
         }
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layout, 0, 1, &p.set, 0, nullptr);
     } else {
         dispatchPerMap(kGridScatter);
     }

@@ -37,6 +37,7 @@ PhotonBudget planPhotons(const Scene& scene, const RenderSettings& settings) {
     }
     b.globalPaths = settings.photons - b.causticPaths;
     b.sppm = settings.estimator == Estimator::Sppm;
+    b.deterministic = settings.deterministic;
     // A global path stores at most one photon per bounce; Russian roulette makes the mean small.
     // A caustic path stores at most one photon: at its first non-specular surface.
     double perPath = std::min<double>(settings.photonCapacity, settings.maxPhotonDepth);

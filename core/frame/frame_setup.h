@@ -25,6 +25,7 @@ struct PhotonBudget {
     std::uint32_t cells[MAP_COUNT] = {};      // cells of each map's grid (hashed: a power of two)
     bool splitCaustics = false;               // caustic paths come from the caustic pass only
     bool sppm = false;                        // the estimator keeps per-pixel statistics
+    bool deterministic = false;               // each cell's photons in canonical order (photon_map.h)
 
     // The maps lie one after another, in map order, in the photon arrays and in cellStart
     // (each map's cells and an end entry).
