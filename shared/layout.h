@@ -146,9 +146,8 @@ struct PH_ALIGN16 GridParams {
     uint resolution; uint kind; uint cellCount; uint cellOffset;
     // resolution: bounded grid cells per axis (k); kind: GRID_*; cellCount: k³ or the table size
     // (a power of two); cellOffset: where this map's cells start in cellCounts/cellStart
-    uint photonOffset; uint photonCapacity; float radius; uint keyBits;
-    // photonOffset/Capacity: this map's slice of the photon arrays; radius: query radius;
-    // keyBits: bits of a cell key (cellCount ≤ 2^keyBits), for the deterministic sort
+    uint photonOffset; uint photonCapacity; float radius; uint pad0;
+    // photonOffset/Capacity: this map's slice of the photon arrays; radius: query radius
 };
 
 // sppm's start and pass counting for one map (sppm.h).
@@ -179,10 +178,10 @@ struct PH_ALIGN16 FrameParams {
     // globalPaths/causticPaths: photons emitted this frame by the global and the caustic pass
     uint estimator; uint kernel; uint knnK; uint globalMode;
     uint gatherRays; uint lightSamples; uint view; uint flags;
-    uint photonIdBits; uint accumulated; uint gatherBudget; float alpha;
-    // photonIdBits: bits of a photon id this frame (photon_map.h); accumulated: frames already
-    // averaged into the accumulation buffer (the progressive index i); gatherBudget: photons a
-    // query visits per cell before it subsamples the cell (0: all); alpha: sppm's α
+    uint pad2; uint accumulated; uint gatherBudget; float alpha;
+    // accumulated: frames already averaged into the accumulation buffer (the progressive index i);
+    // gatherBudget: photons a query visits per cell before it subsamples the cell (0: all);
+    // alpha: sppm's α
     uint pathFirst; uint pathCount; uint pad0; uint pad1;
     // the paths this renderer traces, [pathFirst, pathFirst + pathCount) of the frame's
     // globalPaths + causticPaths: all of them, or one rank's share when several GPUs split a frame
@@ -266,14 +265,14 @@ PH_OFFSET(SceneInfo, infiniteLight, 12); PH_OFFSET(SceneInfo, bvhNodeCount, 16);
 PH_OFFSET(SceneInfo, environmentLight, 24);
 PH_SIZE(GridParams, 48); PH_OFFSET(GridParams, cellSize, 12); PH_OFFSET(GridParams, resolution, 16);
 PH_OFFSET(GridParams, cellOffset, 28); PH_OFFSET(GridParams, photonOffset, 32);
-PH_OFFSET(GridParams, radius, 40); PH_OFFSET(GridParams, keyBits, 44);
+PH_OFFSET(GridParams, radius, 40); PH_OFFSET(GridParams, pad0, 44);
 PH_SIZE(SppmMapParams, 16); PH_OFFSET(SppmMapParams, batches, 8);
 PH_SIZE(SpectralParams, 128); PH_OFFSET(SpectralParams, cauchy, 16); PH_OFFSET(SpectralParams, toRgb0, 80);
 PH_SIZE(FrameParams, 64 + 48 + MAP_COUNT * (48 + 16) + 6 * 16 + 128); PH_OFFSET(FrameParams, scene, 64);
 PH_OFFSET(FrameParams, grids, 112); PH_OFFSET(FrameParams, sppm, 112 + MAP_COUNT * 48);
 PH_OFFSET(FrameParams, width, 112 + MAP_COUNT * 64);
 PH_OFFSET(FrameParams, globalPaths, 128 + MAP_COUNT * 64); PH_OFFSET(FrameParams, estimator, 144 + MAP_COUNT * 64);
-PH_OFFSET(FrameParams, gatherRays, 160 + MAP_COUNT * 64); PH_OFFSET(FrameParams, photonIdBits, 176 + MAP_COUNT * 64);
+PH_OFFSET(FrameParams, gatherRays, 160 + MAP_COUNT * 64); PH_OFFSET(FrameParams, pad2, 176 + MAP_COUNT * 64);
 PH_OFFSET(FrameParams, alpha, 188 + MAP_COUNT * 64); PH_OFFSET(FrameParams, pathFirst, 192 + MAP_COUNT * 64);
 PH_OFFSET(FrameParams, spectrum, 208 + MAP_COUNT * 64);
 PH_SIZE(SppmFlux, 16); PH_OFFSET(SppmFlux, radius, 12);

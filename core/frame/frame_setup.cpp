@@ -17,15 +17,6 @@ std::uint32_t nextPowerOfTwo(std::uint64_t n) {
     return static_cast<std::uint32_t>(std::min<std::uint64_t>(p, 1u << 30));
 }
 
-// Bits that hold every value below n (at least 1).
-std::uint32_t bitsBelow(std::uint64_t n) {
-    std::uint32_t bits = 1;
-    while (bits < 64 && (std::uint64_t(1) << bits) < n) {
-        bits += 1;
-    }
-    return bits;
-}
-
 }  // namespace
 
 PhotonBudget planPhotons(const Scene& scene, const RenderSettings& settings) {
@@ -95,7 +86,6 @@ FrameParams makeFrameParams(const Scene& scene, const CameraDesc& camera, const 
         g.cellOffset = budget.cellOffset(map);
         g.photonOffset = budget.photonOffset(map);
         g.photonCapacity = budget.capacity[map];
-        g.keyBits = bitsBelow(g.cellCount);
     }
 
     p.width = settings.width;
@@ -118,7 +108,6 @@ FrameParams makeFrameParams(const Scene& scene, const CameraDesc& camera, const 
     if (isSpectral(settings)) {
         p.spectrum = frameSpectrum(frameIndex, settings.seed, settings.wavelength);
     }
-    p.photonIdBits = bitsBelow(budget.totalPaths()) + PHOTON_BOUNCE_BITS;
     p.accumulated = accumulated;
     p.gatherBudget = settings.gatherBudget;
     for (std::uint32_t map = 0; map < MAP_COUNT; ++map) {
