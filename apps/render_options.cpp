@@ -26,7 +26,9 @@ void addRenderOptions(CLI::App& app, RenderOptions& o) {
     for (const SettingSpec& spec : settingSpecs()) {
         std::string help = spec.help;
         if (spec.kind == SettingKind::Flag) {
-            app.add_flag(spec.flag, o.flags[spec.flag], help);
+            // Each flag also has its --no- form, for the settings that are on by default.
+            std::string names = std::string(spec.flag) + ",!--no-" + (spec.flag + 2);
+            app.add_flag(names, o.flags[spec.flag], help)->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
             continue;
         }
         // Given twice, the last one counts (as in most tools), so that a script can override.
@@ -75,7 +77,7 @@ void applyRenderOptions(const CLI::App& app, const RenderOptions& o, RenderSetti
             continue;
         }
         if (spec.kind == SettingKind::Flag) {
-            setSetting(settings, spec, "true", spec.flag);
+            setSetting(settings, spec, o.flags.at(spec.flag) ? "true" : "false", spec.flag);
         } else {
             setSetting(settings, spec, o.values.at(spec.flag), spec.flag);
         }

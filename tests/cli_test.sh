@@ -30,6 +30,15 @@ expect 0 "" "${small[@]}" -o "$tmp/a.png"
 expect 0 "" "${small[@]}" -o "$tmp/a.exr"
 expect 0 "" "${small[@]}" -o "$tmp/a.pfm" --stats "$tmp/stats.json" --frames 2 --estimator progressive
 expect 0 "" "$scenes/cornell.json" "${small[@]}" -o "$tmp/b.png" --pixel-center --estimator knn --k 16
+# A flag's --no- form turns off what a scene file turned on; the last form given counts.
+sed 's/"render": { /"render": { "pixel_center": true, /' "$scenes/cornell.json" >"$tmp/centred.json"
+expect 0 "" "$scenes/cornell.json" "${small[@]}" -o "$tmp/jittered.pfm"
+expect 0 "" "$tmp/centred.json" "${small[@]}" -o "$tmp/centred.pfm"
+expect 0 "" "$tmp/centred.json" "${small[@]}" -o "$tmp/off.pfm" --pixel-center --no-pixel-center
+cmp -s "$tmp/jittered.pfm" "$tmp/off.pfm" && ! cmp -s "$tmp/jittered.pfm" "$tmp/centred.pfm" \
+  || { echo "FAIL: --no-pixel-center did not undo the scene file's pixel_center"; failures=$((failures + 1)); }
+expect 0 "" "${small[@]}" -o "$tmp/n.png" --deterministic --no-deterministic
+expect 2 "--deterministic" "${small[@]}" -o "$tmp/n.png" --no-deterministic=maybe
 for f in a.png a.exr a.pfm b.png stats.json; do
   [ -s "$tmp/$f" ] || { echo "FAIL: $f was not written"; failures=$((failures + 1)); }
 done
