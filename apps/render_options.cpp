@@ -26,7 +26,7 @@ void addRenderOptions(CLI::App& app, RenderOptions& o) {
     for (const SettingSpec& spec : settingSpecs()) {
         std::string help = spec.help;
         if (spec.kind == SettingKind::Flag) {
-            // Each flag also has its --no- form, for the settings that are on by default.
+            // Each flag also has its --no- form, to turn off what a scene file turned on.
             std::string names = std::string(spec.flag) + ",!--no-" + (spec.flag + 2);
             app.add_flag(names, o.flags[spec.flag], help)->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
             continue;

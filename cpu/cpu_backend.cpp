@@ -63,9 +63,11 @@ public:
     }
 
 protected:
-    // The readback of the image and its encoding live beside the buffers.
+    // The readback of the image and its encoding live beside the buffers. The GPUs' ordering
+    // arrays go unused: this backend sorts each cell (buildGrid).
     void adjustPlan(BufferPlan& plan, const PhotonBudget&) override {
         plan.scratchBytes = plan.elements[BINDING_ACCUMULATION] * kHostBytesPerPixel;
+        plan.elements[BINDING_PHOTON_ORDER] = 1;
     }
 
     // The scene stays where the Backend keeps it; the stages read its arrays in place.
