@@ -1,8 +1,11 @@
 // photon-converge: error against time. Renders a scene frame after frame with each estimator and,
-// at every checkpoint (1, 2, 4, ... frames), compares the image with a converged reference:
-// relative RMSE of the whole image and away from the caustic window, and in the window the peak
-// and the energy relative to the reference's. Time is the backend's own GPU (or CPU) stage time,
-// summed over the frames; reading the image back for the comparison is not counted.
+// at every checkpoint (1, 2, 4, ... frames, or --times milliseconds), compares the image with a
+// converged reference (core/image/image_error.h): relative RMSE of the whole image, away from the
+// focus (outside the reference's brightest 0.5%) and at its edges, the focus's energy and peak
+// relative to the reference's, SSIM of the display images; and in the caustic window the peak and
+// energy. With the denoiser on (--set denoise=on) each checkpoint is measured without and with it,
+// the denoised one at its time plus the denoise stage's. Time is the backend's own GPU (or CPU)
+// stage time, summed over the frames; reading the image back for the comparison is not counted.
 //
 //   photon-render scenes/smallpt.json --backend cuda --estimator sppm --frames 4096 --photons 4000000 -o ref.pfm
 //   photon-converge scenes/smallpt.json --reference ref.pfm --backend cuda --estimators sppm,progressive,radius
@@ -62,15 +65,31 @@ Window parseWindow(const std::string& text, const Image& reference) {
     return w;
 }
 
-void printError(const std::string& label, double ms, const ImageError& e) {
-    std::printf("%-34s %10.2f %9.4f %9.4f %8.3f %8.3f\n", label.c_str(), ms, e.whole, e.outside, e.peakRatio,
-                e.energyRatio);
+void printError(const std::string& label, double ms, const ImageError& e, const Quality& q) {
+    std::printf("%-34s %10.2f %9.4f %9.4f %8.3f %8.3f %9.4f %9.4f %8.3f %8.3f %7.4f\n", label.c_str(), ms, e.whole,
+                e.outside, e.peakRatio, e.energyRatio, q.away, q.edges, q.focusEnergy, q.focusPeak, q.ssim);
     std::fflush(stdout);
 }
 
-nlohmann::json errorJson(const ImageError& e) {
-    return {{"rmse", e.whole}, {"rmse_outside_window", e.outside}, {"peak_ratio", e.peakRatio},
-            {"energy_ratio", e.energyRatio}};
+nlohmann::json errorJson(const ImageError& e, const Quality& q) {
+    return {{"rmse", e.whole},           {"rmse_outside_window", e.outside}, {"peak_ratio", e.peakRatio},
+            {"energy_ratio", e.energyRatio}, {"rmse_away_from_focus", q.away},  {"rmse_edges", q.edges},
+            {"focus_energy_ratio", q.focusEnergy}, {"focus_peak_ratio", q.focusPeak}, {"ssim", q.ssim}};
+}
+
+// The checkpoints of --times: milliseconds, ascending.
+std::vector<double> parseTimes(const std::string& text) {
+    std::vector<double> times;
+    double last = 0.0;
+    for (const std::string& item : splitList(text)) {
+        double t = parseNumber(item, Range{0.0, 1e9, true, false}, "--times");
+        if (t <= last) {
+            throw InputError("--times: '" + text + "' is not ascending");
+        }
+        times.push_back(t);
+        last = t;
+    }
+    return times;
 }
 
 int run(int argc, char** argv) {
@@ -82,6 +101,8 @@ int run(int argc, char** argv) {
     std::string estimators = "sppm,progressive,radius";
     std::string windowText = "auto";
     std::string jsonPath;
+    std::string timesText;
+    std::string imagesDir;
     std::uint32_t maxFrames = 256;
     BackendOptions options;
     std::vector<std::string> overrides;
@@ -96,16 +117,27 @@ int run(int argc, char** argv) {
     app.add_option("--window", windowText, "The caustic window: auto[:H] about the reference's brightest pixel, or x0,y0,x1,y1");
     app.add_option("--set", overrides, "KEY=VALUE: a render setting of the scene file (photons, width, seed, ...)");
     app.add_option("--json", jsonPath, "Write the measurements as JSON");
+    app.add_option("--times", timesText,
+                   "Checkpoints in milliseconds of stage time, e.g. 16,33,100,400 (in place of frames 1, 2, 4, ...; "
+                   "--frames still caps the frames)");
+    app.add_option("--images", imagesDir, "Write each checkpoint's images as PFM into this folder");
     if (int code = parseCommandLine(app, argc, argv); code >= 0) {
         return code;
     }
     Image reference = readImage(referencePath);
     Window window = parseWindow(windowText, reference);
+    std::vector<double> times = parseTimes(timesText);
+    QualityMasks masks(reference);
     std::printf("reference %s: %ux%u, window [%u, %u) x [%u, %u)\n", referencePath.c_str(), reference.width,
                 reference.height, window.x0, window.x1, window.y0, window.y1);
-    std::printf("%-34s %10s %9s %9s %8s %8s\n", "estimator, frames", "time ms", "rmse", "outside", "peak", "energy");
+    std::printf("%-34s %10s %9s %9s %8s %8s %9s %9s %8s %8s %7s\n", "estimator, frames", "time ms", "rmse", "outside",
+                "peak", "energy", "away", "edges", "focus E", "focus pk", "ssim");
+    auto measure = [&](const Image& image) {
+        return std::pair{compareWithReference(image, reference, window), measureQuality(image, reference, masks)};
+    };
     if (!comparePath.empty()) {
-        printError(comparePath, 0.0, compareWithReference(readImage(comparePath), reference, window));
+        auto [e, q] = measure(readImage(comparePath));
+        printError(comparePath, 0.0, e, q);
         return 0;
     }
     if (scenePath.empty()) {
@@ -145,18 +177,44 @@ int run(int argc, char** argv) {
         backend->setSettings(s);
         double ms = 0.0;
         std::uint32_t next = 1;
+        std::size_t nextTime = 0;
         nlohmann::json rows = nlohmann::json::array();
         for (std::uint32_t f = 1; f <= maxFrames; ++f) {
             backend->renderFrame();
             ms += backend->lastFrameStats().ms.total();
-            if (f == next || f == maxFrames) {
-                ImageError e = compareWithReference(backend->image(), reference, window);
-                printError(name + ", " + std::to_string(f), ms, e);
-                nlohmann::json row = errorJson(e);
-                row["frames"] = f;
-                row["ms"] = ms;
-                rows.push_back(row);
-                next *= 2;
+            bool checkpoint = times.empty() ? f == next || f == maxFrames : ms >= times[nextTime] || f == maxFrames;
+            if (!checkpoint) {
+                continue;
+            }
+            std::string label = name + ", " + std::to_string(f);
+            Image raw = backend->rawImage();
+            auto [e, q] = measure(raw);
+            printError(label, ms, e, q);
+            nlohmann::json row = errorJson(e, q);
+            row["frames"] = f;
+            row["ms"] = ms;
+            if (!imagesDir.empty()) {
+                writeImage(imagesDir + "/" + name + "-" + std::to_string(f) + ".pfm", raw, 0.0f, Tonemap::Clamp);
+            }
+            if (denoises(s)) {
+                Image denoised = backend->image();
+                double denoiseMs = backend->lastFrameStats().ms[STAGE_DENOISE];
+                auto [de, dq] = measure(denoised);
+                printError(label + " denoised", ms + denoiseMs, de, dq);
+                row["denoised"] = errorJson(de, dq);
+                row["denoise_ms"] = denoiseMs;
+                if (!imagesDir.empty()) {
+                    writeImage(imagesDir + "/" + name + "-" + std::to_string(f) + "-denoised.pfm", denoised, 0.0f,
+                               Tonemap::Clamp);
+                }
+            }
+            rows.push_back(row);
+            next *= 2;
+            while (nextTime < times.size() && ms >= times[nextTime]) {
+                ++nextTime;  // a frame longer than the gap between checkpoints passes several
+            }
+            if (!times.empty() && nextTime == times.size()) {
+                break;
             }
         }
         out["estimators"][name] = rows;

@@ -26,6 +26,7 @@
 #include "core/settings/setting_specs.h"
 #include "core/system/error.h"
 #include "core/system/output_file.h"
+#include "core/frame/aov_images.h"
 #include "core/system/program.h"
 
 namespace photon {
@@ -173,8 +174,25 @@ int run(int argc, char** argv) {
     int interrupted = interruptSignal();
     std::uint32_t frames = static_cast<std::uint32_t>(times.size());
     Image image = backend->image();
+    if (!times.empty()) {
+        times.back()[STAGE_DENOISE] = backend->lastFrameStats().ms[STAGE_DENOISE];  // run by image(), once
+    }
     double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    writeImage(output, image, settings.exposure, settings.tonemap);
+    // An EXR file gets the image without the denoiser beside the denoised one, and the AOVs.
+    std::vector<ExrLayer> layers;
+    Image raw;
+    if (denoises(settings)) {
+        raw = backend->rawImage();
+        layers.push_back({"raw", &raw, "RGB"});
+    }
+    AovImages aovs;
+    if (settings.aov) {
+        aovs = aovImages(backend->readAovs(), settings.width, settings.height, frames);
+        for (const ExrLayer& layer : exrLayers(aovs)) {
+            layers.push_back(layer);
+        }
+    }
+    writeImage(output, image, settings.exposure, settings.tonemap, layers);
     if (!statsPath.empty()) {
         writeStats(statsPath, *backend, times, wall);
     }

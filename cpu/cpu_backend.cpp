@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/system/parallel.h"
+#include "shared/denoise.h"
 #include "shared/eye_trace.h"
 #include "shared/photon_map.h"
 #include "shared/photon_trace.h"
@@ -175,12 +176,21 @@ private:
         const FrameParams& params = bindings_.params;
         bool start = sppmStarts(params.estimator, params.view, params.accumulated);
         forEachPixel([&](std::uint32_t p) {
-            bindings_.frameRadiance[p] = glm::vec4(gatherStage(bindings_, p, params.estimator, params.globalMode, start), 1.0f);
+            bindings_.frameRadiance[p] = gatherStage(bindings_, p, params.estimator, params.globalMode, start);
         });
     }
 
     void accumulate() {
-        forEachPixel([&](std::uint32_t p) { bindings_.accumulation[p] = accumulatePixel(bindings_, p); });
+        forEachPixel([&](std::uint32_t p) { accumulateStage(bindings_, p); });
+    }
+
+    void denoise() {
+        if ((bindings_.params.flags & FLAG_DENOISE) == 0u) {
+            return;
+        }
+        for (std::uint32_t pass = 0; pass < DENOISE_PASS_COUNT; ++pass) {
+            forEachPixel([&](std::uint32_t p) { denoisePass(bindings_, p, pass); });
+        }
     }
 
     template <typename PixelFn>

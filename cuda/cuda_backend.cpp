@@ -127,6 +127,10 @@ protected:
         CUDA_CHECK(cudaEventRecord(events_[stage + 1], stream_), kStages[stage].name);
     }
 
+    void skipStage(std::uint32_t stage) override {
+        CUDA_CHECK(cudaEventRecord(events_[stage + 1], stream_), kStages[stage].name);
+    }
+
     FrameResult endStages() override {
         readCounters();
         FrameResult result;

@@ -1,7 +1,9 @@
 // Compiles every shared header with nvcc, so nothing host-only creeps into shared/.
+#include "../shared/aov.h"
 #include "../shared/bindings.h"
 #include "../shared/bsdf.h"
 #include "../shared/constants.h"
+#include "../shared/denoise.h"
 #include "../shared/dispersion.h"
 #include "../shared/environment.h"
 #include "../shared/estimate.h"

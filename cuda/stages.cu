@@ -7,6 +7,7 @@
 
 #include "core/system/error.h"
 #include "cuda_check.h"
+#include "shared/denoise.h"
 #include "shared/eye_trace.h"
 #include "shared/gather.h"
 #include "shared/photon_map.h"
@@ -99,14 +100,21 @@ template <uint Estimator, uint GlobalMode, bool SppmStart>
 __global__ void __launch_bounds__(kGatherThreads, gatherMinBlocks(GlobalMode)) gatherKernel(const __grid_constant__ Bindings b) {
     uint p;
     if (pixelOf(b, p)) {
-        b.frameRadiance[p] = vec4(gatherStage(b, p, Estimator, GlobalMode, SppmStart), 1.0f);
+        b.frameRadiance[p] = gatherStage(b, p, Estimator, GlobalMode, SppmStart);
     }
 }
 
 __global__ void accumulateKernel(const __grid_constant__ Bindings b) {
     uint p;
     if (pixelOf(b, p)) {
-        b.accumulation[p] = accumulatePixel(b, p);
+        accumulateStage(b, p);
+    }
+}
+
+__global__ void denoiseKernel(const __grid_constant__ Bindings b, uint pass) {
+    uint p;
+    if (pixelOf(b, p)) {
+        denoisePass(b, p, pass);
     }
 }
 
@@ -194,6 +202,17 @@ void tracePrimaryRays(const Bindings& b, std::uint32_t* hits, const LaunchConfig
 void accumulate(const Bindings& b, const LaunchConfig& c, cudaStream_t s) {
     accumulateKernel<<<pixelGrid(b, c), dim3(c.pixelBlockX, c.pixelBlockY), 0, s>>>(b);
     CUDA_CHECK_LAUNCH("accumulate");
+}
+
+// Its passes in order, one launch each (each reads its neighbours' results of the one before).
+void denoise(const Bindings& b, const LaunchConfig& c, cudaStream_t s) {
+    if ((b.params.flags & FLAG_DENOISE) == 0u) {
+        return;
+    }
+    for (uint pass = 0; pass < DENOISE_PASS_COUNT; ++pass) {
+        denoiseKernel<<<pixelGrid(b, c), dim3(c.pixelBlockX, c.pixelBlockY), 0, s>>>(b, pass);
+        CUDA_CHECK_LAUNCH("denoise");
+    }
 }
 
 }  // namespace PHOTON_KERNEL_NAMESPACE

@@ -1,9 +1,9 @@
 #version 460
 // Stage accumulate: one invocation per pixel, folding this frame into the running mean (or, under
-// sppm, making the image from the pixel's statistics).
+// sppm, making the image from the pixel's statistics), and its auxiliary images.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/bindings.h"
-#include "shared/sppm.h"
+#include "shared/aov.h"
 #include "glsl/dispatch.h"
 
 layout(local_size_x = PIXEL_TILE_X, local_size_y = PIXEL_TILE_Y) in;
@@ -13,5 +13,5 @@ void main() {
     if (!pixelOfInvocation(pixel)) {
         return;
     }
-    accumulation[pixel] = accumulatePixel(pixel);
+    accumulateStage(pixel);
 }

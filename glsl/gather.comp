@@ -19,5 +19,5 @@ void main() {
     if (!pixelOfInvocation(pixel)) {
         return;
     }
-    frameRadiance[pixel] = vec4(gatherStage(pixel, ESTIMATOR, GLOBAL_MODE, SPPM_START), 1.0f);
+    frameRadiance[pixel] = gatherStage(pixel, ESTIMATOR, GLOBAL_MODE, SPPM_START);
 }

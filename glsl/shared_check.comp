@@ -1,9 +1,11 @@
 #version 460
 // Compiles every shared header as GLSL, so nothing C++-only creeps into shared/.
 #extension GL_GOOGLE_include_directive : require
+#include "../shared/aov.h"
 #include "../shared/bindings.h"
 #include "../shared/bsdf.h"
 #include "../shared/constants.h"
+#include "../shared/denoise.h"
 #include "../shared/dispersion.h"
 #include "../shared/environment.h"
 #include "../shared/estimate.h"
@@ -47,7 +49,7 @@ void main() {
     Photon p;
     uint store = photonBounce(path, p);
     hitPoints[i] = tracePixel(i);
-    frameRadiance[i] = vec4(gatherPixel(i) + gatherStage(i, ESTIMATOR_SPPM, GLOBAL_DIRECT, true), float(store));
+    frameRadiance[i] = vec4(gatherPixel(i) + vec3(gatherStage(i, ESTIMATOR_SPPM, GLOBAL_DIRECT, true)), float(store));
     accumulation[i] = accumulatePixel(i);
     accumulation[i] = accumulateMean(accumulation[i], frameRadiance[i], params.accumulated);
     photonKeys[i] = photonCellKey(p.position, params.grids[0]);

@@ -101,6 +101,11 @@ PH_CONST uint TONEMAP_REINHARD = 1u;
 PH_CONST uint TONEMAP_ACES = 2u;  // Narkowicz's fit of the ACES filmic curve
 PH_CONST uint TONEMAP_COUNT = 3u;
 
+// Whether the image is denoised (denoise.h).
+PH_CONST uint DENOISE_OFF = 0u;
+PH_CONST uint DENOISE_ON = 1u;
+PH_CONST uint DENOISE_MODE_COUNT = 2u;
+
 // Photon maps. Every per-map quantity (grids, capacities, counters, radii, sppm state) is an
 // array indexed by these, so that a further map is one constant here plus the photon pass that
 // fills it.
@@ -150,6 +155,31 @@ PH_CONST uint FLAG_PIXEL_CENTER = 1u;    // one ray through each pixel centre: n
 PH_CONST uint FLAG_SPLIT_CAUSTICS = 2u;  // caustic paths come from the caustic pass only
 PH_CONST uint FLAG_DETERMINISTIC = 4u;   // the photon maps in canonical order (photon_map.h)
 PH_CONST uint FLAG_SPECTRAL = 8u;        // paths carry the frame's three wavelengths (spectral.h)
+PH_CONST uint FLAG_AOVS = 16u;           // accumulate keeps the auxiliary images (aov.h)
+PH_CONST uint FLAG_DENOISE = 32u;        // the denoise stage filters the image (denoise.h); implies FLAG_AOVS
+
+// The denoiser (denoise.h): an edge-avoiding à-trous wavelet filter guided by variance (Dammertz
+// et al. 2010; Schied et al. 2017, SVGF), DENOISE_LEVELS passes of a 5 × 5 B3-spline kernel with
+// holes 2^level. Its edge-stopping functions: normals max(0, n_p·n_q)^DENOISE_SIGMA_NORMAL,
+// depth exp(-|z_p - z_q| / (DENOISE_SIGMA_DEPTH |∇z| |p - q|)), luminance
+// exp(-|l_p - l_q| / (DENOISE_SIGMA_LUMINANCE σ_l)).
+PH_CONST uint DENOISE_LEVELS = 5u;
+PH_CONST float DENOISE_SIGMA_NORMAL = 128.0f;
+PH_CONST float DENOISE_SIGMA_DEPTH = 1.0f;
+PH_CONST float DENOISE_SIGMA_LUMINANCE = 4.0f;
+// ... and albedo exp(-|a_p - a_q|₁ / DENOISE_SIGMA_ALBEDO): demodulation holds only where the
+// light is the albedo times the illumination, which a metal's reflection beside paint is not.
+PH_CONST float DENOISE_SIGMA_ALBEDO = 0.1f;
+// Below this many frames a pixel's variance is estimated over its 7 × 7 neighbours, not its own
+// frames (SVGF's rule for a short history).
+PH_CONST uint DENOISE_TEMPORAL_FRAMES = 4u;
+// Demodulation divides by the albedo, at least this (a black surface is not divided by zero).
+PH_CONST float DENOISE_MIN_ALBEDO = 0.01f;
+// The denoise stage's passes: the guides and variance (prepare), the levels, then the image
+// (the last level multiplies the albedo back).
+PH_CONST uint DENOISE_PASS_PREPARE = 0u;
+PH_CONST uint DENOISE_PASS_LEVEL = 1u;  // level i is pass DENOISE_PASS_LEVEL + i
+PH_CONST uint DENOISE_PASS_COUNT = DENOISE_PASS_LEVEL + DENOISE_LEVELS;
 
 // Independent random streams, so that no two stages draw the same numbers.
 PH_CONST uint STREAM_PHOTON = 0x1b873593u;

@@ -130,7 +130,9 @@ PH_FN HitPoint emptyHitPoint() {
     hp.metallic = 0.0f;
     hp.roughness = 0.0f;
     hp.channel = CHANNEL_ALL;
-    hp.pad1 = 0u;
+    hp.pathLength = 0.0f;
+    hp.aovAlbedo = vec3(0.0f);
+    hp.aovNormal = 0u;
     return hp;
 }
 
@@ -148,6 +150,19 @@ PH_FN void endPathAt(PH_INOUT(HitPoint) hp, vec3 x, uint material, vec3 weight, 
     hp.albedo = m.albedo;
     hp.metallic = m.metallic;
     hp.roughness = m.roughness;
+}
+
+// The surface the auxiliary images describe (aov.h): the first one the path meets that is not a
+// perfect mirror or glass, `travelled` from the camera along the path, its albedo times the
+// path's weight through mirrors and glass up to it (before any choice between its own lobes, whose
+// weights would make one frame's albedo several times the surface's). None (pathLength -1) if the
+// path met an emitter first.
+PH_FN void meetAovSurface(BUF_PARAM PH_INOUT(HitPoint) hp, vec3 weight, vec3 albedo, vec3 ns, float travelled) {
+    if (hp.pathLength == 0.0f) {
+        hp.pathLength = max(travelled, 1.0e-30f);  // a camera on the surface still met it
+        hp.aovAlbedo = rgbFromSpectral(BUF_ARG weight * albedo);
+        hp.aovNormal = octEncode(ns);
+    }
 }
 
 // A probe of the traversal alone, for photon-bench (Aila and Laine's "primary rays"): the ray
@@ -168,6 +183,7 @@ PH_FN HitPoint tracePixel(BUF_PARAM uint pixel) {
     vec3 weight = vec3(1.0f);
     uint channel = CHANNEL_ALL;
     bool emittersSampled = false;  // the last bounce's lobe took direct light by shadow rays
+    float travelled = 0.0f;        // the path's length so far
     for (uint depth = 0u; depth < BUF(params).maxEyeDepth; ++depth) {
         Hit hit;
         if (!traceClosest(BUF_ARG ray, hit)) {
@@ -178,6 +194,7 @@ PH_FN HitPoint tracePixel(BUF_PARAM uint pixel) {
             }
             break;
         }
+        travelled += hit.t;
         SurfacePoint sp = surfaceAt(BUF_ARG hit);
         Material m = sp.material;
         uint surface = materialFlags(m);
@@ -185,6 +202,11 @@ PH_FN HitPoint tracePixel(BUF_PARAM uint pixel) {
         weight *= volumeTransmittance(m, dot(wo, hit.normal), hit.t);
         meetDispersion(BUF_ARG m, channel, weight, rng);
         if ((surface & SURFACE_EMITS) != 0u) {
+            // An emitter is no surface for the auxiliary images: its light is not its albedo
+            // times what reaches it, and the denoiser must leave it as it is.
+            if (hp.pathLength == 0.0f) {
+                hp.pathLength = -1.0f;
+            }
             // Seen by the camera or through mirrors and glass; at diffuse surfaces direct light
             // counts the lights (area lights, emissive triangles) with shadow rays.
             bool sampled = emittersSampled && (m.type == MATERIAL_EMITTER || hit.kind == PRIM_TRIANGLE);
@@ -203,6 +225,7 @@ PH_FN HitPoint tracePixel(BUF_PARAM uint pixel) {
             // on; then the path ends at the stored lobes or follows a traced one.
             bool stores = (surface & SURFACE_STORES_PHOTONS) != 0u;
             if (stores || m.roughness >= PBR_DELTA_ALPHA) {
+                meetAovSurface(BUF_ARG hp, weight, m.albedo, ns, travelled);
                 hp.direct += weight * directLight(BUF_ARG hit.position, ns, ng, wo, m, rng);
             }
             float pTraced = stores ? pbrTracedProbability(m, dot(wo, ns)) : 1.0f;
@@ -220,6 +243,9 @@ PH_FN HitPoint tracePixel(BUF_PARAM uint pixel) {
             continue;
         }
         emittersSampled = false;
+        if ((surface & SURFACE_ENDS_EYE_PATHS) != 0u) {
+            meetAovSurface(BUF_ARG hp, weight, m.albedo, ns, travelled);
+        }
         // A mirror coat continues the path, or the surface's base ends it here.
         bool mirrorCoat = false;
         if ((surface & SURFACE_SPECULAR_COAT) != 0u) {

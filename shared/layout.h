@@ -212,9 +212,12 @@ struct PH_ALIGN16 HitPoint {
     vec3 weight; uint normal;        // path throughput from the camera; octahedral shading normal facing ωo
     vec3 direct; uint outgoing;      // weighted emission, background and direct light; octahedral ωo
     vec3 albedo; uint geometricNormal;  // the albedo there (textured); octahedral geometric normal facing ωo
-    float metallic; float roughness; uint channel; uint pad1;
+    float metallic; float roughness; uint channel; float pathLength;
     // pbr: textured metallic and GGX α there; channel: the one wavelength of the frame's three the
-    // path kept at a dispersive surface (CHANNEL_ALL: none met), spectral.h
+    // path kept at a dispersive surface (CHANNEL_ALL: none met), spectral.h; pathLength: the eye
+    // path's length from the camera to the surface of the auxiliary images (eye_trace.h,
+    // meetAovSurface), through mirrors and glass (the depth of what a mirror shows); ≤ 0: none
+    vec3 aovAlbedo; uint aovNormal;  // that surface's albedo (RGB, times the path's weight) and octahedral shading normal
 };
 
 // A pixel's statistics under stochastic progressive photon mapping (sppm.h), kept across frames:
@@ -229,10 +232,33 @@ struct PH_ALIGN16 SppmPixel {
     float count[SPPM_COUNT_SLOTS];      // N of each map (the slots beyond MAP_COUNT unused)
 };
 
+// A pixel's auxiliary images (aov.h), running means over the frames since the last reset, as
+// Open Image Denoise defines them: the albedo and shading normal where the eye path ended (after
+// mirrors and glass), and the depth of the camera ray's first hit.
+struct PH_ALIGN16 PixelAov {
+    vec3 albedo; float depth;      // reflectance at the path's end (times the path's weight); its path length, among frames that end on a surface
+    vec3 normal; float coverage;   // mean shading normal (0 where paths escape); share of frames whose path ended on a surface
+    float luminance; float luminance2; float pad0; float pad1;
+    // luminance, luminance2: moments of the frames' luminance (denoise.h's variance)
+    vec3 background; float pad2;   // mean radiance of the frames whose path met no such surface (emitters, the sky)
+};
+
+// The denoiser's state of one pixel (denoise.h): the demodulated image and its variance, read
+// from one plane and written to the other by each level, and the guides the levels compare.
+struct PH_ALIGN16 DenoisePixel {
+    vec4 planes[2];               // rgb: demodulated radiance, a: its variance
+    vec3 normal; float depth;     // unit mean normal (0: no surface); mean depth
+    vec3 albedo; float depthSlope;  // the mean albedo; |∇z|, depth per pixel
+};
+
 PH_NAMESPACE_END
 
 #ifdef __cplusplus
 namespace photon {
+PH_SIZE(PixelAov, 64); PH_OFFSET(PixelAov, background, 48); PH_OFFSET(PixelAov, depth, 12); PH_OFFSET(PixelAov, normal, 16);
+PH_OFFSET(PixelAov, coverage, 28); PH_OFFSET(PixelAov, luminance, 32); PH_OFFSET(PixelAov, luminance2, 36);
+PH_SIZE(DenoisePixel, 64); PH_OFFSET(DenoisePixel, planes, 0); PH_OFFSET(DenoisePixel, normal, 32);
+PH_OFFSET(DenoisePixel, depth, 44); PH_OFFSET(DenoisePixel, albedo, 48); PH_OFFSET(DenoisePixel, depthSlope, 60);
 PH_SIZE(Sphere, 32); PH_OFFSET(Sphere, radius, 12); PH_OFFSET(Sphere, material, 16);
 PH_SIZE(Plane, 32); PH_OFFSET(Plane, offset, 12); PH_OFFSET(Plane, material, 16);
 PH_SIZE(Quad, 64); PH_OFFSET(Quad, material, 12); PH_OFFSET(Quad, edgeU, 16); PH_OFFSET(Quad, area, 28);
@@ -281,9 +307,9 @@ PH_OFFSET(SppmPixel, count, 16 + MAP_COUNT * 16);
 static_assert(MAP_COUNT <= SPPM_COUNT_SLOTS, "SppmPixel::count holds a slot per map");
 PH_SIZE(Photon, 32); PH_OFFSET(Photon, incoming, 12); PH_OFFSET(Photon, power, 16); PH_OFFSET(Photon, id, 28);
 PH_SIZE(MapPhoton, 16); PH_OFFSET(MapPhoton, power, 12);
-PH_SIZE(HitPoint, 80); PH_OFFSET(HitPoint, metallic, 64); PH_OFFSET(HitPoint, channel, 72); PH_OFFSET(HitPoint, roughness, 68); PH_OFFSET(HitPoint, material, 12); PH_OFFSET(HitPoint, weight, 16);
+PH_SIZE(HitPoint, 96); PH_OFFSET(HitPoint, aovAlbedo, 80); PH_OFFSET(HitPoint, aovNormal, 92); PH_OFFSET(HitPoint, metallic, 64); PH_OFFSET(HitPoint, channel, 72); PH_OFFSET(HitPoint, roughness, 68); PH_OFFSET(HitPoint, material, 12); PH_OFFSET(HitPoint, weight, 16);
 PH_OFFSET(HitPoint, normal, 28); PH_OFFSET(HitPoint, direct, 32); PH_OFFSET(HitPoint, outgoing, 44);
-PH_OFFSET(HitPoint, albedo, 48); PH_OFFSET(HitPoint, geometricNormal, 60);
+PH_OFFSET(HitPoint, albedo, 48); PH_OFFSET(HitPoint, geometricNormal, 60); PH_OFFSET(HitPoint, pathLength, 76);
 }  // namespace photon
 #endif
 

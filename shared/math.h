@@ -149,6 +149,9 @@ PH_FN vec3 offsetRayOrigin(vec3 p, vec3 geometricNormal, vec3 direction) {
     return p + geometricNormal * (side * 1.0e-4f * scale);
 }
 
+// Rec. 709 luminance of linear RGB.
+PH_FN float luminanceOf(vec3 rgb) { return dot(rgb, vec3(0.2126f, 0.7152f, 0.0722f)); }
+
 PH_NAMESPACE_END
 
 #endif

@@ -171,8 +171,9 @@ PH_FN vec3 gatherSppmMap(BUF_PARAM uint pixel, uint map, float u, bool start) {
 }
 
 // The gather stage under sppm: updates the pixel's statistics and returns this frame's own
-// estimate (frameRadiance; STAGE_ACCUMULATE makes the image from the statistics).
-PH_FN vec3 gatherSppm(BUF_PARAM uint pixel, bool start) {
+// estimate (frameRadiance; STAGE_ACCUMULATE makes the image from the statistics), and in w the
+// luminance of its caustic map's part, which the denoiser leaves as it is (denoise.h).
+PH_FN vec4 gatherSppm(BUF_PARAM uint pixel, bool start) {
     uint view = BUF(params).view;
     uint accumulated = BUF(params).accumulated;
     vec3 direct = rgbFromSpectral(BUF_ARG BUF(hitPoints)[pixel].direct);
@@ -182,6 +183,7 @@ PH_FN vec3 gatherSppm(BUF_PARAM uint pixel, bool start) {
     vec3 mean = BUF(sppmPixels)[pixel].direct;
     BUF(sppmPixels)[pixel].direct = mean + (direct - mean) / float(accumulated + 1u);
     vec3 frame = viewShowsDirect(view) ? direct : vec3(0.0f);
+    float caustic = 0.0f;
     if (BUF(hitPoints)[pixel].material != NONE) {
         Rng rng = rngCreate(pixel, BUF(params).frameIndex, BUF(params).seed, STREAM_GATHER);
         float u = rngNext(rng);
@@ -189,10 +191,11 @@ PH_FN vec3 gatherSppm(BUF_PARAM uint pixel, bool start) {
         for (uint m = 0u; m < MAP_COUNT; ++m) {
             vec3 estimate = gatherSppmMap(BUF_ARG pixel, m, u, start);
             shown += viewShowsMap(view, m) ? estimate : vec3(0.0f);
+            caustic += m == MAP_CAUSTIC && viewShowsMap(view, m) ? luminanceOf(estimate) : 0.0f;
         }
         frame += shown;
     }
-    return frame;
+    return vec4(frame, caustic);
 }
 
 // The pixel's image after `frames` frames.
@@ -219,13 +222,14 @@ PH_FN vec4 accumulatePixel(BUF_PARAM uint pixel) {
 }
 
 // The gather stage for every estimator and global mode (sppm: direct mode only); `sppmStart`:
-// sppmStarts of the frame.
-PH_FN vec3 gatherStage(BUF_PARAM uint pixel, uint estimator, uint globalMode, bool sppmStart) {
+// sppmStarts of the frame. The frame's radiance, and in w what gatherSppm puts there (0 for the
+// other estimators, whose maps the denoiser filters together).
+PH_FN vec4 gatherStage(BUF_PARAM uint pixel, uint estimator, uint globalMode, bool sppmStart) {
     if (estimator == ESTIMATOR_SPPM && BUF(params).view != VIEW_GRID) {
         return gatherSppm(BUF_ARG pixel, sppmStart);
     }
     vec3 radiance = gatherPixel(BUF_ARG pixel, estimator, globalMode);
-    return BUF(params).view == VIEW_GRID ? radiance : rgbFromSpectral(BUF_ARG radiance);
+    return vec4(BUF(params).view == VIEW_GRID ? radiance : rgbFromSpectral(BUF_ARG radiance), 0.0f);
 }
 
 PH_NAMESPACE_END

@@ -15,7 +15,9 @@
 //   buildGrid     sort each map's photons by grid cell (count, exclusive scan, scatter)
 //   tracePixels   eye paths through mirrors and glass to hit points, with direct light
 //   gather        photon density estimates (and final gather) at the hit points
-//   accumulate    fold the frame into the running mean
+//   accumulate    fold the frame into the running mean (and the auxiliary images, aov.h)
+//   denoise       filter the running mean, guided by the auxiliary images (denoise.h); only
+//                 under FLAG_DENOISE, and a frame whose image nobody looks at may skip it
 #ifndef PHOTON_SHARED_STAGES_H
 #define PHOTON_SHARED_STAGES_H
 
@@ -26,7 +28,8 @@
     X(BUILD_GRID, 1u, buildGrid, "grid")            \
     X(TRACE_PIXELS, 2u, tracePixels, "trace px")    \
     X(GATHER, 3u, gather, "gather")                 \
-    X(ACCUMULATE, 4u, accumulate, "accum")
+    X(ACCUMULATE, 4u, accumulate, "accum")          \
+    X(DENOISE, 5u, denoise, "denoise")
 
 PH_NAMESPACE_BEGIN
 

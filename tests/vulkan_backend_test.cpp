@@ -225,6 +225,34 @@ TEST_F(VulkanBackendTest, EveryEstimatorAndGridAgreesWithCpu) {
     }
 }
 
+// The auxiliary images (shared/aov.h) equal the CPU's, up to the rounding of the luminance and the
+// normal's decoding; the denoised image agrees as the images do.
+TEST_F(VulkanBackendTest, AovsAndTheDenoiserAgreeWithCpu) {
+    RenderSettings settings = smallSettings();
+    settings.estimator = Estimator::Sppm;
+    settings.denoise = Denoise::On;
+    render(featureScene(), settings, 5);
+    std::vector<PixelAov> a = cpu_->readAovs();
+    std::vector<PixelAov> b = vulkan_->readAovs();
+    ASSERT_EQ(a.size(), std::size_t(settings.width) * settings.height);
+    ASSERT_EQ(a.size(), b.size());
+    float worst = 0.0f;
+    float worstMoment = 0.0f;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        glm::vec3 albedo = glm::abs(a[i].albedo - b[i].albedo);
+        glm::vec3 normal = glm::abs(a[i].normal - b[i].normal);
+        worst = std::max({worst, albedo.x, albedo.y, albedo.z, normal.x, normal.y, normal.z,
+                          std::abs(a[i].depth - b[i].depth) / std::max(a[i].depth, 1.0f),
+                          std::abs(a[i].coverage - b[i].coverage)});
+        worstMoment = std::max(worstMoment, std::abs(a[i].luminance - b[i].luminance) / std::max(a[i].luminance, 1.0f));
+    }
+    std::printf("AOVs: largest difference %.3g (moments %.3g)\n", worst, worstMoment);
+    EXPECT_LE(worst, lavapipe_ ? 1e-5f : 1e-3f);
+    EXPECT_LE(worstMoment, lavapipe_ ? 1e-3f : 0.05f);
+    EXPECT_LE(compareImages(cpu_->image(), vulkan_->image(), "denoised"), imageTolerance());
+    EXPECT_LE(compareImages(cpu_->rawImage(), vulkan_->rawImage(), "raw"), imageTolerance());
+}
+
 TEST_F(VulkanBackendTest, FinalGatherAgreesWithCpu) {
     for (Estimator estimator : {Estimator::Radius, Estimator::Knn}) {
         RenderSettings settings = smallSettings();

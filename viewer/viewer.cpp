@@ -51,6 +51,7 @@ Viewer::Viewer(const ViewerOptions& options)
     }
     context_ = std::make_shared<vk::Context>(contextOptions);
     backend_ = std::make_unique<vk::VulkanBackend>(context_);
+    backend_->setDenoiseEachFrame(true);  // every frame is shown
     choosePhotons(state_.settings, backend_->runsOnCpu());
 
     // The display pass leaves a swapchain image ready to present, an offscreen one ready to copy.

@@ -53,7 +53,8 @@ void Viewer::drawFrame() {
     if (dots) {
         dots_->resize(params.width, params.height);
     }
-    display_->setSources(backend_->accumulationBuffer(), dots_->buffer());
+    VkBuffer image = denoises(backend_->settings()) ? backend_->buffer(BINDING_DENOISED) : backend_->accumulationBuffer();
+    display_->setSources(image, dots_->buffer());
 
     bool scripted = options_.frames > 0;
     if (scripted && !options_.screenshot.empty() && framesDrawn_ + 1 == options_.frames) {

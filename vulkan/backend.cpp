@@ -90,6 +90,8 @@ void VulkanBackend::beginStages(const FrameParams& params) {
 
 void VulkanBackend::runStage(std::uint32_t stage, const FrameParams& params) { recordStage(frame_.cmd, stage, params); }
 
+void VulkanBackend::skipStage(std::uint32_t stage) { timestamp(frame_.cmd, stage + 1); }
+
 FrameResult VulkanBackend::endStages() {
     VkCommandBuffer cmd = frame_.cmd;
     recordStatsReadback(cmd);

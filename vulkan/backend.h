@@ -64,6 +64,7 @@ protected:
     // endStages() submits it and waits.
     void beginStages(const FrameParams& params) override;
     void runStage(std::uint32_t stage, const FrameParams& params) override;
+    void skipStage(std::uint32_t stage) override;
     FrameResult endStages() override;
     void readBuffer(std::uint32_t binding, std::uint64_t offset, std::uint64_t bytes, void* data) override;
 

@@ -16,6 +16,7 @@
 namespace photon::vk {
 namespace spirv {
 #include "accumulate.spv.h"
+#include "denoise.spv.h"
 #include "gather.spv.h"
 #include "gridArgs.spv.h"
 #include "gridCount.spv.h"
@@ -42,7 +43,7 @@ ShaderCode code(const std::uint32_t (&words)[N]) {
 }
 
 constexpr const char* kShaderNames[kShaderCount] = {"tracePhotons", "gridArgs", "gridCount", "gridScan", "gridScanAdd",
-                                                   "gridScatter", "gridScatterIds", "gridRank", "gridMerge", "tracePixels", "gather", "accumulate"};
+                                                   "gridScatter", "gridScatterIds", "gridRank", "gridMerge", "tracePixels", "gather", "accumulate", "denoise"};
 
 ShaderCode shaderCode(Shader shader) {
     switch (shader) {
@@ -58,6 +59,7 @@ ShaderCode shaderCode(Shader shader) {
         case kTracePixels: return code(spirv::tracePixels);
         case kGather: return code(spirv::gather);
         case kAccumulate: return code(spirv::accumulate);
+        case kDenoise: return code(spirv::denoise);
         case kShaderCount: break;
     }
     return {nullptr, 0};

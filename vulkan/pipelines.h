@@ -25,6 +25,7 @@ enum Shader : std::uint32_t {
     kTracePixels,   // STAGE_TRACE_PIXELS
     kGather,        // STAGE_GATHER
     kAccumulate,    // STAGE_ACCUMULATE
+    kDenoise,       // STAGE_DENOISE, a pass at a time
     kShaderCount
 };
 

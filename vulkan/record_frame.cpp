@@ -90,9 +90,31 @@ void VulkanBackend::gather(VkCommandBuffer cmd, const FrameParams& params) {
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
 }
 
-// The last stage: the caller orders its own reads of the accumulation (recordFrame()).
 void VulkanBackend::accumulate(VkCommandBuffer cmd, const FrameParams& params) {
     dispatchPixels(cmd, pipelines_.pipeline[kAccumulate], params);
+    // The running mean and the auxiliary images are written before denoise reads them; the
+    // caller orders its own reads of the accumulation (recordFrame()).
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+}
+
+// The passes in order, each reading what the one before wrote. The last writes `denoised`: the
+// caller orders its own reads of it.
+void VulkanBackend::denoise(VkCommandBuffer cmd, const FrameParams& params) {
+    if ((params.flags & FLAG_DENOISE) == 0u) {
+        return;
+    }
+    for (std::uint32_t pass = 0; pass < DENOISE_PASS_COUNT; ++pass) {
+        if (pass > 0) {
+            memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+        }
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_.pipeline[kDenoise]);
+        vkCmdPushConstants(cmd, pipelines_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pass), &pass);
+        std::uint32_t tilesX = (params.width + PIXEL_TILE_X - 1) / PIXEL_TILE_X;
+        std::uint32_t tilesY = (params.height + PIXEL_TILE_Y - 1) / PIXEL_TILE_Y;
+        vkCmdDispatch(cmd, tilesX, tilesY, 1);
+    }
 }
 
 // A counting sort of each map's photons by cell. The count and scatter passes run over the photons

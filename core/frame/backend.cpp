@@ -119,12 +119,28 @@ void Backend::renderFrame() {
     }
 }
 
-FrameResult Backend::runFrame(const FrameParams& params) {
+FrameResult Backend::runFrame(const FrameParams& params, bool denoiseOnly) {
     beginStages(params);
     for (const StageInfo& stage : kStages) {
-        runStage(stage.id, params);
+        bool denoise = stage.id == STAGE_DENOISE;
+        if (denoiseOnly ? denoise : !denoise || (params.flags & FLAG_DENOISE) != 0u) {
+            runStage(stage.id, params);
+        } else {
+            skipStage(stage.id);
+        }
     }
     return endStages();
+}
+
+void Backend::denoiseImage() {
+    if (accumulated_ == 0 || denoisedFrames_ == accumulated_ || !denoises(settings_)) {
+        return;
+    }
+    FrameParams params = params_;
+    params.flags |= FLAG_DENOISE;
+    FrameResult result = runFrame(params, true);
+    stats_.ms[STAGE_DENOISE] = result.ms[STAGE_DENOISE];
+    denoisedFrames_ = accumulated_;
 }
 
 void Backend::measureRadii() {
@@ -143,6 +159,9 @@ const FrameParams& Backend::beginFrame() {
     measureRadii();
     params_ = makeFrameParams(scene_, camera_, settings_, budget_, frameIndex_, accumulated_,
                               policy_.frame(settings_, accumulated_), split_);
+    if (!denoiseEachFrame_) {
+        params_.flags &= ~FLAG_DENOISE;
+    }
     return params_;
 }
 
@@ -168,6 +187,7 @@ bool Backend::endFrame(const FrameResult& result, bool mayRepeat) {
     policy_.observe(settings_, result.counters);
     frameIndex_ += 1;
     accumulated_ += 1;
+    denoisedFrames_ = (params_.flags & FLAG_DENOISE) != 0u ? accumulated_ : 0u;
     return true;
 }
 
@@ -187,6 +207,17 @@ bool Backend::growPhotonMaps() {
 }
 
 Image Backend::image() {
+    if (accumulated_ == 0) {
+        return Image(settings_.width, settings_.height);
+    }
+    if (!denoises(settings_)) {
+        return readImage(BINDING_ACCUMULATION);
+    }
+    denoiseImage();
+    return readImage(BINDING_DENOISED);
+}
+
+Image Backend::rawImage() {
     if (accumulated_ == 0) {
         return Image(settings_.width, settings_.height);
     }
@@ -215,6 +246,13 @@ std::vector<T> Backend::readPerPixel(std::uint32_t binding) {
 std::vector<HitPoint> Backend::readHitPoints() { return readPerPixel<HitPoint>(BINDING_HIT_POINTS); }
 
 std::vector<SppmPixel> Backend::readSppmPixels() { return readPerPixel<SppmPixel>(BINDING_SPPM_PIXELS); }
+
+std::vector<PixelAov> Backend::readAovs() {
+    if (!keepsAovs(settings_) || accumulated_ == 0) {
+        return {};
+    }
+    return readPerPixel<PixelAov>(BINDING_AOVS);
+}
 
 PhotonMaps Backend::readPhotonMaps() {
     PhotonMaps maps;

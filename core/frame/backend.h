@@ -132,8 +132,14 @@ public:
     const FrameParams& beginFrame();
     bool endFrame(const FrameResult& result, bool mayRepeat = true);
 
-    // The mean of the frames rendered since the last reset (linear radiance).
+    // The image of the frames rendered since the last reset (linear radiance): denoised when the
+    // settings say so (denoises()), running the denoise stage first if the last frame did not.
     Image image();
+    // The mean of the frames without the denoiser.
+    Image rawImage();
+    // Whether every frame runs the denoise stage (a viewer shows every frame); otherwise image()
+    // runs it on demand, once for the frames it shows.
+    void setDenoiseEachFrame(bool each) { denoiseEachFrame_ = each; }
     std::uint32_t accumulatedFrames() const { return accumulated_; }
     const FrameStats& lastFrameStats() const { return stats_; }
     const Scene& scene() const { return scene_; }
@@ -147,6 +153,8 @@ public:
     PhotonMaps readPhotonMaps();
     std::vector<HitPoint> readHitPoints();
     std::vector<SppmPixel> readSppmPixels();
+    // The auxiliary images (shared/aov.h), when the settings keep them (keepsAovs()); else empty.
+    std::vector<PixelAov> readAovs();
     Image readFrame();
 
     // What this backend may allocate now (what it holds already counts as free).
@@ -172,12 +180,18 @@ protected:
     // (which waits for the frame and returns its times and counters).
     virtual void beginStages(const FrameParams& params) = 0;
     virtual void runStage(std::uint32_t stage, const FrameParams& params) = 0;
+    // A stage this frame leaves out, in its place in the order (timers that run from stage to
+    // stage record it as taking no time).
+    virtual void skipStage(std::uint32_t stage) { (void)stage; }
     virtual FrameResult endStages() = 0;
     // `bytes` bytes of the buffer at `binding`, from byte `offset`, after every earlier frame.
     virtual void readBuffer(std::uint32_t binding, std::uint64_t offset, std::uint64_t bytes, void* data) = 0;
 
 private:
-    FrameResult runFrame(const FrameParams& params);
+    // The stages in order; with denoiseOnly, only the denoise stage, over the last frame's image.
+    FrameResult runFrame(const FrameParams& params, bool denoiseOnly = false);
+    // Runs the denoise stage over the image, unless it ran for this image already.
+    void denoiseImage();
     Image readImage(std::uint32_t binding);
     // A per-pixel buffer's elements, as the last frame left them.
     template <typename T>
@@ -208,6 +222,8 @@ private:
     BufferPlan plan_;
     std::uint32_t grownCapacity_[MAP_COUNT] = {};  // capacities raised by growPhotonMaps()
     bool warnedDropped_ = false;
+    bool denoiseEachFrame_ = false;
+    std::uint32_t denoisedFrames_ = 0;  // accumulated_ when the denoise stage last ran (0: never)
 };
 
 }  // namespace photon

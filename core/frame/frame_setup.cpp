@@ -29,6 +29,8 @@ PhotonBudget planPhotons(const Scene& scene, const RenderSettings& settings) {
     b.globalPaths = settings.photons - b.causticPaths;
     b.sppm = settings.estimator == Estimator::Sppm;
     b.deterministic = settings.deterministic;
+    b.aovs = keepsAovs(settings);
+    b.denoise = denoises(settings);
     // A global path stores at most one photon per bounce; Russian roulette makes the mean small.
     // A caustic path stores at most one photon: at its first non-specular surface.
     double perPath = std::min<double>(settings.photonCapacity, settings.maxPhotonDepth);
@@ -104,7 +106,8 @@ FrameParams makeFrameParams(const Scene& scene, const CameraDesc& camera, const 
     p.lightSamples = settings.lightSamples;
     p.view = static_cast<std::uint32_t>(settings.view);
     p.flags = (settings.pixelCenter ? FLAG_PIXEL_CENTER : 0u) | (budget.splitCaustics ? FLAG_SPLIT_CAUSTICS : 0u) |
-              (settings.deterministic ? FLAG_DETERMINISTIC : 0u) | (isSpectral(settings) ? FLAG_SPECTRAL : 0u);
+              (settings.deterministic ? FLAG_DETERMINISTIC : 0u) | (isSpectral(settings) ? FLAG_SPECTRAL : 0u) |
+              (keepsAovs(settings) ? FLAG_AOVS : 0u) | (denoises(settings) ? FLAG_DENOISE : 0u);
     if (isSpectral(settings)) {
         p.spectrum = frameSpectrum(frameIndex, settings.seed, settings.wavelength);
     }

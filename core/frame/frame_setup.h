@@ -26,6 +26,8 @@ struct PhotonBudget {
     bool splitCaustics = false;               // caustic paths come from the caustic pass only
     bool sppm = false;                        // the estimator keeps per-pixel statistics
     bool deterministic = false;               // each cell's photons in canonical order (photon_map.h)
+    bool aovs = false;                        // the auxiliary images are kept (shared/aov.h)
+    bool denoise = false;                     // the denoiser runs (shared/denoise.h)
 
     // The maps lie one after another, in map order, in the photon arrays and in cellStart
     // (each map's cells and an end entry).

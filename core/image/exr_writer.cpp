@@ -66,7 +66,7 @@ const char* toString(ExrCompression c) {
     return "?";
 }
 
-std::string encodeExr(const Image& image, ExrCompression compression, ExrLayout layout) {
+std::string encodeExr(const Image& image, ExrCompression compression, ExrLayout layout, const std::vector<ExrLayer>& layers) {
     // OpenEXR compresses blocks of scan lines in its global thread pool, which has no threads
     // until asked for: one per hardware thread, as parallelFor has.
     static std::once_flag poolStarted;
@@ -75,15 +75,28 @@ std::string encodeExr(const Image& image, ExrCompression compression, ExrLayout 
         Imf::Header header(int(image.width), int(image.height));
         header.compression() = openExrCompression(compression);
         Imf::FrameBuffer frame;
-        const char* names[3] = {"R", "G", "B"};
         const std::size_t pixel = sizeof(glm::vec4);
+        std::size_t channels = 0;
+        // Straight from the images' RGBA pixels: OpenEXR gathers each channel itself.
+        auto insert = [&](const std::string& name, const Image& from, int c) {
+            if (from.width != image.width || from.height != image.height) {
+                throw std::invalid_argument("layer " + name + " is not the image's size");
+            }
+            header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+            char* first = const_cast<char*>(reinterpret_cast<const char*>(&from.pixels[0][c]));
+            frame.insert(name, Imf::Slice(Imf::FLOAT, first, pixel, pixel * image.width));
+            channels += 1;
+        };
+        const char* names[3] = {"R", "G", "B"};
         for (int c = 0; c < 3; ++c) {
-            header.channels().insert(names[c], Imf::Channel(Imf::FLOAT));
-            // Straight from the image's RGBA pixels: OpenEXR gathers each channel itself.
-            char* first = const_cast<char*>(reinterpret_cast<const char*>(&image.pixels[0][c]));
-            frame.insert(names[c], Imf::Slice(Imf::FLOAT, first, pixel, pixel * image.width));
+            insert(names[c], image, c);
         }
-        MemoryStream stream(image.pixels.size() * 3 * sizeof(float) + 4096);
+        for (const ExrLayer& layer : layers) {
+            for (std::size_t c = 0; c < layer.channels.size() && c < 4; ++c) {
+                insert(layer.name + "." + layer.channels[c], *layer.image, int(c));
+            }
+        }
+        MemoryStream stream(image.pixels.size() * channels * sizeof(float) + 4096);
         if (layout == ExrLayout::Tiles) {
             header.setTileDescription(Imf::TileDescription(kTileSize, kTileSize, Imf::ONE_LEVEL));
             Imf::TiledOutputFile file(stream, header);

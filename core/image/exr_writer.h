@@ -9,6 +9,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "core/image/image.h"
 
@@ -21,8 +22,9 @@ enum class ExrLayout { Scanlines, Tiles };
 const char* toString(ExrCompression compression);
 const char* toString(ExrLayout layout);
 
-// The whole EXR file. Throws RuntimeError if OpenEXR fails.
+// The whole EXR file: the image as R, G, B and each layer's channels. Throws RuntimeError if
+// OpenEXR fails.
 std::string encodeExr(const Image& image, ExrCompression compression = ExrCompression::Rle,
-                      ExrLayout layout = ExrLayout::Scanlines);
+                      ExrLayout layout = ExrLayout::Scanlines, const std::vector<ExrLayer>& layers = {});
 
 }  // namespace photon

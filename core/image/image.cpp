@@ -113,23 +113,29 @@ ImageFormat imageFormatFor(const std::string& path) {
     throw InputError(path + ": unknown image format (use .png, .exr or .pfm)");
 }
 
-std::string encodeImage(ImageFormat format, const Image& image, float exposure, Tonemap curve) {
+std::string encodeImage(ImageFormat format, const Image& image, float exposure, Tonemap curve,
+                        const std::vector<ExrLayer>& layers) {
     switch (format) {
         case ImageFormat::Png: return encodeDisplayPng(image, exposure, curve);
-        case ImageFormat::Exr: return encodeExr(image);
+        case ImageFormat::Exr: return encodeExr(image, ExrCompression::Rle, ExrLayout::Scanlines, layers);
         case ImageFormat::Pfm: return encodePfm(image);
     }
     return {};
 }
 
-void writeImage(const std::string& path, const Image& image, float exposure, Tonemap curve) {
-    if (!allFinite(image)) {
+void writeImage(const std::string& path, const Image& image, float exposure, Tonemap curve,
+                const std::vector<ExrLayer>& layers) {
+    ImageFormat format = imageFormatFor(path);
+    bool finite = allFinite(image);
+    for (const ExrLayer& layer : layers) {
+        finite = finite && (format != ImageFormat::Exr || allFinite(*layer.image));
+    }
+    if (!finite) {
         throw RuntimeError(path + ": the image holds values that are not finite; nothing was written");
     }
-    ImageFormat format = imageFormatFor(path);
     std::string bytes;
     try {
-        bytes = encodeImage(format, image, exposure, curve);
+        bytes = encodeImage(format, image, exposure, curve, layers);
     } catch (const RuntimeError& e) {
         throw RuntimeError(path + ": " + e.what());
     }

@@ -24,17 +24,27 @@ struct Image {
 
 enum class ImageFormat { Png, Exr, Pfm };
 
+// A further image in an EXR file, as channels "<name>.<channel>" (OpenEXR's layer naming):
+// channel i is component i of the image's pixels ("RGB", "XYZ" for a normal, "Z" for depth).
+struct ExrLayer {
+    std::string name;
+    const Image* image = nullptr;  // the main image's size
+    std::string channels;          // one letter a channel, at most four
+};
+
 // The format for a file name's extension; throws InputError for anything else.
 ImageFormat imageFormatFor(const std::string& path);
 
 // The file's bytes, in memory. Throws RuntimeError if an encoder fails.
-std::string encodeImage(ImageFormat format, const Image& image, float exposure, Tonemap tonemap);
+std::string encodeImage(ImageFormat format, const Image& image, float exposure, Tonemap tonemap,
+                        const std::vector<ExrLayer>& layers = {});
 
 // Writes by extension, whole or not at all (core/system/output_file.h). PNG applies exposure (stops) and
 // the tone curve; EXR and PFM are linear (core/image/png_writer.h, exr_writer.h say how). Throws
 // RuntimeError "<path>: <reason>" if the image cannot be encoded or the file cannot be written
-// (with the OS's reason).
-void writeImage(const std::string& path, const Image& image, float exposure, Tonemap tonemap);
+// (with the OS's reason). EXR files get the layers too; the other formats only the image.
+void writeImage(const std::string& path, const Image& image, float exposure, Tonemap tonemap,
+                const std::vector<ExrLayer>& layers = {});
 
 // An 8-bit RGB picture (display values) as PNG, whole or not at all.
 void writeRgb8Png(const std::string& path, const unsigned char* rgb, std::uint32_t width, std::uint32_t height);

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "core/image/image.h"
 
@@ -30,5 +31,39 @@ struct ImageError {
 ImageError compareWithReference(const Image& image, const Image& reference, const Window& window);
 
 double luminance(const glm::vec4& rgb);
+
+// Pixels of a reference image, for measuring an error in part of it.
+using PixelMask = std::vector<bool>;
+
+// The reference's brightest `fraction` of pixels by luminance: a caustic's focus, highlights.
+PixelMask brightestPixels(const Image& reference, double fraction);
+// Pixels whose luminance differs from a 4-neighbour's by more than `contrast` times the larger of
+// the two: the reference's edges (silhouettes, shadow boundaries, texture edges).
+PixelMask edgePixels(const Image& reference, double contrast);
+PixelMask operator!(const PixelMask& mask);
+
+// Relative RMSE over the pixels of the mask.
+double relativeRmse(const Image& image, const Image& reference, const PixelMask& mask);
+// Σ luminance over the mask / the reference's there, and the largest luminance there / the reference's.
+double energyRatio(const Image& image, const Image& reference, const PixelMask& mask);
+double peakRatio(const Image& image, const Image& reference, const PixelMask& mask);
+
+// The structural similarity (Wang et al. 2004) of the two images' display values (linear radiance
+// clamped to [0, 1] through the sRGB curve), as scikit-image's structural_similarity computes it
+// with gaussian_weights=True (σ 1.5, an 11 × 11 window, K1 0.01, K2 0.03, population covariances,
+// data range 1): the mean over the pixels of each channel, averaged over the channels.
+double displaySsim(const Image& image, const Image& reference);
+
+// Quality as issue 37 reports it: the whole image, away from the focus (outside the reference's
+// brightest 0.5%), at the edges, the focus's energy and peak, and SSIM.
+struct Quality {
+    double whole = 0.0, away = 0.0, edges = 0.0, focusEnergy = 0.0, focusPeak = 0.0, ssim = 0.0;
+};
+struct QualityMasks {
+    PixelMask focus;  // brightestPixels(reference, 0.005)
+    PixelMask edges;  // edgePixels(reference, 0.25)
+    explicit QualityMasks(const Image& reference);
+};
+Quality measureQuality(const Image& image, const Image& reference, const QualityMasks& masks);
 
 }  // namespace photon

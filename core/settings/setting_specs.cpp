@@ -93,6 +93,12 @@ std::vector<SettingSpec> makeSpecs() {
         choice("view", "--view", "What to show", &R::view),
         number("exposure", "--exposure", "Exposure in stops (PNG and display)", &R::exposure, {-64.0, 64.0}),
         choice("tonemap", "--tonemap", "Tone curve", &R::tonemap),
+        choice("denoise", "--denoise",
+               "Filter the image, guided by its albedo, normals, depth and variance (.png and .pfm get the "
+               "filtered image, .exr both); on unless given",
+               &R::denoise),
+        flag("aov", "--aov", "Keep the albedo, normal, depth and variance images; .exr files get them as layers",
+             &R::aov),
     };
 }
 
@@ -262,6 +268,9 @@ bool isGiven(const RenderSettings& settings, const std::string& key) {
 void chooseDefaults(RenderSettings& settings, bool timed) {
     if (!isGiven(settings, "estimator") && (timed || settings.frames > 1)) {
         settings.estimator = Estimator::Sppm;
+    }
+    if (!isGiven(settings, "denoise")) {
+        settings.denoise = Denoise::On;
     }
 }
 

@@ -25,6 +25,7 @@ constexpr Names<View, enumCount<View>()> kViews{{{View::Final, "final"},
                                  {View::Caustic, "caustic"},
                                  {View::Grid, "grid"}}};
 constexpr Names<Tonemap, enumCount<Tonemap>()> kTonemaps{{{Tonemap::Clamp, "clamp"}, {Tonemap::Reinhard, "reinhard"}, {Tonemap::Aces, "aces"}}};
+constexpr Names<Denoise, enumCount<Denoise>()> kDenoise{{{Denoise::Off, "off"}, {Denoise::On, "on"}}};
 
 // Each table lists every value once, in order, so that names[v] is the name of value v.
 template <typename E, std::size_t N>
@@ -37,7 +38,7 @@ constexpr bool complete(const Names<E, N>& names) {
     return true;
 }
 static_assert(complete(kEstimators) && complete(kKernels) && complete(kGrids) && complete(kGlobalModes) &&
-              complete(kViews) && complete(kTonemaps), "every enumeration value needs its name, in order");
+              complete(kViews) && complete(kTonemaps) && complete(kDenoise), "every enumeration value needs its name, in order");
 
 template <typename E, std::size_t N>
 const char* nameOf(const Names<E, N>& names, E e) {
@@ -94,6 +95,7 @@ const char* toString(GridKind g) { return nameOf(kGrids, g); }
 const char* toString(GlobalMode m) { return nameOf(kGlobalModes, m); }
 const char* toString(View v) { return nameOf(kViews, v); }
 const char* toString(Tonemap t) { return nameOf(kTonemaps, t); }
+const char* toString(Denoise d) { return nameOf(kDenoise, d); }
 
 bool parse(const std::string& s, Estimator& out) { return valueOf(kEstimators, s, out); }
 bool parse(const std::string& s, Kernel& out) { return valueOf(kKernels, s, out); }
@@ -101,6 +103,7 @@ bool parse(const std::string& s, GridKind& out) { return valueOf(kGrids, s, out)
 bool parse(const std::string& s, GlobalMode& out) { return valueOf(kGlobalModes, s, out); }
 bool parse(const std::string& s, View& out) { return valueOf(kViews, s, out); }
 bool parse(const std::string& s, Tonemap& out) { return valueOf(kTonemaps, s, out); }
+bool parse(const std::string& s, Denoise& out) { return valueOf(kDenoise, s, out); }
 
 std::string choices(Estimator) { return list(kEstimators); }
 std::string choices(Kernel) { return list(kKernels); }
@@ -108,5 +111,6 @@ std::string choices(GridKind) { return list(kGrids); }
 std::string choices(GlobalMode) { return list(kGlobalModes); }
 std::string choices(View) { return list(kViews); }
 std::string choices(Tonemap) { return list(kTonemaps); }
+std::string choices(Denoise) { return list(kDenoise); }
 
 }  // namespace photon

@@ -29,6 +29,7 @@ enum class View : std::uint32_t {
     Grid = VIEW_GRID
 };
 enum class Tonemap : std::uint32_t { Clamp = TONEMAP_CLAMP, Reinhard = TONEMAP_REINHARD, Aces = TONEMAP_ACES };
+enum class Denoise : std::uint32_t { Off = DENOISE_OFF, On = DENOISE_ON };
 
 template <typename E>
 constexpr std::uint32_t enumCount();
@@ -38,6 +39,7 @@ template <> constexpr std::uint32_t enumCount<GridKind>() { return GRID_KIND_COU
 template <> constexpr std::uint32_t enumCount<GlobalMode>() { return GLOBAL_MODE_COUNT; }
 template <> constexpr std::uint32_t enumCount<View>() { return VIEW_COUNT; }
 template <> constexpr std::uint32_t enumCount<Tonemap>() { return TONEMAP_COUNT; }
+template <> constexpr std::uint32_t enumCount<Denoise>() { return DENOISE_MODE_COUNT; }
 
 struct RenderSettings {
     std::uint32_t width = 640;
@@ -68,6 +70,9 @@ struct RenderSettings {
     bool spectral = false;                // paths carry wavelengths (shared/spectral.h): dispersion
     float wavelength = 0.0f;              // every path at this wavelength [nm] (implies spectral); 0: sampled
     View view = View::Final;
+    Denoise denoise = Denoise::Off;       // filter the image (shared/denoise.h); photon-render and the viewer
+                                          // turn it on unless told (chooseDefaults)
+    bool aov = false;                     // keep the auxiliary images (albedo, normal, depth, variance)
     float exposure = 0.0f;                // stops
     Tonemap tonemap = Tonemap::Aces;
     std::uint64_t given = 0;              // bit i: settingSpecs()[i] was set by a file or a flag
@@ -78,6 +83,11 @@ float mapRadius(const RenderSettings& settings, std::uint32_t map);
 
 // Whether paths carry wavelengths: --spectral, or one wavelength given.
 inline bool isSpectral(const RenderSettings& settings) { return settings.spectral || settings.wavelength > 0.0f; }
+
+// Whether the denoiser runs (never on the grid view, a heat map), and whether the accumulate stage
+// keeps the auxiliary images (for it, or for --aov).
+inline bool denoises(const RenderSettings& settings) { return settings.denoise == Denoise::On && settings.view != View::Grid; }
+inline bool keepsAovs(const RenderSettings& settings) { return settings.aov || denoises(settings); }
 const char* mapRadiusFlag(std::uint32_t map);
 
 const char* toString(Estimator e);
@@ -86,6 +96,7 @@ const char* toString(GridKind g);
 const char* toString(GlobalMode m);
 const char* toString(View v);
 const char* toString(Tonemap t);
+const char* toString(Denoise d);
 
 // Parse the names above; false if the name is not one of them.
 bool parse(const std::string& s, Estimator& out);
@@ -94,6 +105,7 @@ bool parse(const std::string& s, GridKind& out);
 bool parse(const std::string& s, GlobalMode& out);
 bool parse(const std::string& s, View& out);
 bool parse(const std::string& s, Tonemap& out);
+bool parse(const std::string& s, Denoise& out);
 
 // The accepted names, "a|b|c", for messages and --help.
 std::string choices(Estimator);
@@ -102,5 +114,6 @@ std::string choices(GridKind);
 std::string choices(GlobalMode);
 std::string choices(View);
 std::string choices(Tonemap);
+std::string choices(Denoise);
 
 }  // namespace photon

@@ -1,0 +1,214 @@
+// The denoise stage: an edge-avoiding à-trous wavelet filter (Dammertz, Sewtz, Hanika & Lensch,
+// HPG 2010) guided by each pixel's variance, as in spatiotemporal variance-guided filtering
+// (Schied et al., HPG 2017, SVGF), over the accumulated image. Its passes, one dispatch each:
+//   prepare  the radiance, less the pixel's background (aov.h: emitters and sky, added back as
+//            they are), divided by the albedo (demodulation: the filter sees illumination, so
+//            textures are not blurred), its variance (from the frames' luminance moments, or over
+//            the 7 × 7 neighbours while a pixel has few frames) and the guides: unit normal, depth
+//            and its slope |∇z|;
+//   level i  a 5 × 5 B3-spline kernel with holes 2^i, each tap weighted by how alike the two
+//            pixels' normals, depths, albedos and luminances are, the luminance relative to the
+//            standard deviation. The last level multiplies the albedo back.
+// Two departures from SVGF, both measured on the Cornell box (docs/denoising.md):
+// - The variance is not filtered from level to level. SVGF divides it by the taps' weights as if
+//   neighbours' noise were independent; a photon map's is not (neighbours share photons: its
+//   noise is blotches, not grain), so the coarse levels would see too little variance to remove
+//   the blotches. Every level uses the prepared variance.
+// - The variance leaves the caustic map out (aov.h), so that a focus, whose frames vary by more
+//   than its contrast, keeps its edges: its surroundings' variance is the global map's. (Left
+//   out of the filter instead, the caustic map's speckle over the floor and walls stays.)
+#ifndef PHOTON_SHARED_DENOISE_H
+#define PHOTON_SHARED_DENOISE_H
+
+#include "aov.h"
+
+PH_NAMESPACE_BEGIN
+
+// The B3 spline's weights at offsets 0, 1 and 2 (1/16, 1/4, 3/8, 1/4, 1/16).
+PH_FN float b3Weight(int offset) {
+    int a = abs(offset);
+    return a == 0 ? 0.375f : (a == 1 ? 0.25f : 0.0625f);
+}
+
+PH_FN bool aovSurface(PH_IN(PixelAov) a) { return dot(a.normal, a.normal) > 1.0e-6f; }
+
+// The smaller of the depth differences to the two neighbours along one axis (the side across a
+// depth edge is not the surface's slope); -1 where neither neighbour has a depth.
+PH_FN float depthStep(BUF_PARAM uint x, uint y, int dx, int dy, float z) {
+    uint width = BUF(params).width;
+    uint height = BUF(params).height;
+    float best = -1.0f;
+    for (int side = -1; side <= 1; side += 2) {
+        int qx = int(x) + side * dx;
+        int qy = int(y) + side * dy;
+        if (qx < 0 || qy < 0 || qx >= int(width) || qy >= int(height)) {
+            continue;
+        }
+        PixelAov q = BUF(aovs)[uint(qy) * width + uint(qx)];
+        if (q.coverage > 0.0f) {
+            float d = abs(q.depth - z);
+            best = best < 0.0f ? d : min(best, d);
+        }
+    }
+    return best;
+}
+
+// Pass prepare of one pixel.
+PH_FN void denoisePrepare(BUF_PARAM uint pixel) {
+    uint width = BUF(params).width;
+    uint height = BUF(params).height;
+    uint x = pixel % width;
+    uint y = pixel / width;
+    PixelAov a = BUF(aovs)[pixel];
+    bool surface = aovSurface(a);
+    vec3 illumination = (vec3(BUF(accumulation)[pixel]) - a.background) / demodulation(a.albedo, surface);
+    uint frames = BUF(params).accumulated + 1u;
+
+    // The variance of the mean of `frames` frames: the pixel's own moments, or while they are
+    // few its neighbours' on the same surface.
+    float mean = a.luminance;
+    float mean2 = a.luminance2;
+    vec3 normal = surface ? unitVector(a.normal) : vec3(0.0f);
+    if (frames < DENOISE_TEMPORAL_FRAMES && surface) {
+        float sum = 0.0f;
+        float sum2 = 0.0f;
+        float weights = 0.0f;
+        for (int dy = -3; dy <= 3; ++dy) {
+            for (int dx = -3; dx <= 3; ++dx) {
+                int qx = int(x) + dx;
+                int qy = int(y) + dy;
+                if (qx < 0 || qy < 0 || qx >= int(width) || qy >= int(height)) {
+                    continue;
+                }
+                PixelAov q = BUF(aovs)[uint(qy) * width + uint(qx)];
+                if (!aovSurface(q)) {
+                    continue;
+                }
+                float w = max(dot(normal, unitVector(q.normal)), 0.0f);
+                sum += w * q.luminance;
+                sum2 += w * q.luminance2;
+                weights += w;
+            }
+        }
+        mean = sum / weights;
+        mean2 = sum2 / weights;
+    }
+    // The moments are of the radiance: its variance divided by the albedo's luminance squared is
+    // that of the illumination the levels filter.
+    float scale = luminanceOf(demodulation(a.albedo, surface));
+    float variance = max(mean2 - mean * mean, 0.0f) / (float(frames) * scale * scale);
+
+    float slopeX = depthStep(BUF_ARG x, y, 1, 0, a.depth);
+    float slopeY = depthStep(BUF_ARG x, y, 0, 1, a.depth);
+    // Member by member: glslang stores a whole struct with an array member into a buffer with
+    // invalid SPIR-V (the array's stride makes the two struct types differ).
+    BUF(denoisePixels)[pixel].planes[0] = vec4(illumination, variance);
+    BUF(denoisePixels)[pixel].planes[1] = vec4(0.0f);
+    BUF(denoisePixels)[pixel].normal = normal;
+    BUF(denoisePixels)[pixel].depth = a.coverage > 0.0f ? a.depth : 0.0f;
+    BUF(denoisePixels)[pixel].depthSlope = length(vec2(max(slopeX, 0.0f), max(slopeY, 0.0f)));
+    BUF(denoisePixels)[pixel].albedo = a.albedo;
+}
+
+// x^128 by seven squarings: the normal weight's exponent, DENOISE_SIGMA_NORMAL.
+PH_FN float pow128(float x) {
+    float y = x;
+    for (uint i = 0u; i < 7u; ++i) {
+        y *= y;
+    }
+    return y;
+}
+
+// The variance about a pixel, 3 × 3 Gaussian-weighted: one pixel's own estimate is too noisy to
+// scale the luminance weight with (SVGF).
+PH_FN float blurredVariance(BUF_PARAM uint x, uint y, uint plane) {
+    uint width = BUF(params).width;
+    uint height = BUF(params).height;
+    float sum = 0.0f;
+    float weights = 0.0f;
+    for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+            int qx = int(x) + dx;
+            int qy = int(y) + dy;
+            if (qx < 0 || qy < 0 || qx >= int(width) || qy >= int(height)) {
+                continue;
+            }
+            float w = (dx == 0 ? 0.5f : 0.25f) * (dy == 0 ? 0.5f : 0.25f);
+            sum += w * BUF(denoisePixels)[uint(qy) * width + uint(qx)].planes[plane].w;
+            weights += w;
+        }
+    }
+    return sum / weights;
+}
+
+// Pass `level` (0 .. DENOISE_LEVELS - 1) of one pixel: reads plane level % 2, writes the other;
+// the last level writes the image into `denoised`.
+PH_FN void denoiseLevel(BUF_PARAM uint pixel, uint level) {
+    uint width = BUF(params).width;
+    uint height = BUF(params).height;
+    uint x = pixel % width;
+    uint y = pixel / width;
+    uint source = level & 1u;
+    vec4 centre = BUF(denoisePixels)[pixel].planes[source];
+    vec3 normal = BUF(denoisePixels)[pixel].normal;
+    float depth = BUF(denoisePixels)[pixel].depth;
+    vec3 albedo = BUF(denoisePixels)[pixel].albedo;
+    vec4 filtered = centre;
+    if (dot(normal, normal) > 0.0f) {
+        float luminance = luminanceOf(vec3(centre));
+        // Level 0 blurs the variance and passes it on: the levels all use the same.
+        float variance = level == 0u ? blurredVariance(BUF_ARG x, y, source) : centre.w;
+        float sigmaL = DENOISE_SIGMA_LUMINANCE * sqrt(variance) + 1.0e-6f;
+        float reach = DENOISE_SIGMA_DEPTH * BUF(denoisePixels)[pixel].depthSlope;
+        float depthFloor = 1.0e-3f * depth + 1.0e-6f;
+        int hole = 1 << int(level);
+        vec3 sum = vec3(0.0f);
+        float weights = 0.0f;
+        for (int dy = -2; dy <= 2; ++dy) {
+            for (int dx = -2; dx <= 2; ++dx) {
+                int qx = int(x) + dx * hole;
+                int qy = int(y) + dy * hole;
+                if (qx < 0 || qy < 0 || qx >= int(width) || qy >= int(height)) {
+                    continue;
+                }
+                float h = b3Weight(dx) * b3Weight(dy);
+                vec4 c = centre;
+                float w = 1.0f;
+                if (dx != 0 || dy != 0) {
+                    uint q = uint(qy) * width + uint(qx);
+                    c = BUF(denoisePixels)[q].planes[source];
+                    float wn = pow128(max(dot(normal, BUF(denoisePixels)[q].normal), 0.0f));
+                    float distance = float(hole) * length(vec2(float(dx), float(dy)));
+                    float wz = abs(depth - BUF(denoisePixels)[q].depth) / (reach * distance + depthFloor);
+                    float wl = abs(luminance - luminanceOf(vec3(c))) / sigmaL;
+                    vec3 da = abs(albedo - BUF(denoisePixels)[q].albedo);
+                    float wa = (da.x + da.y + da.z) / DENOISE_SIGMA_ALBEDO;
+                    w = wn * exp(-wz - wl - wa);
+                }
+                sum += (h * w) * vec3(c);
+                weights += h * w;
+            }
+        }
+        filtered = vec4(sum / weights, variance);
+    }
+    if (level + 1u < DENOISE_LEVELS) {
+        BUF(denoisePixels)[pixel].planes[source ^ 1u] = filtered;
+        return;
+    }
+    PixelAov a = BUF(aovs)[pixel];
+    vec3 image = vec3(filtered) * demodulation(a.albedo, aovSurface(a)) + a.background;
+    BUF(denoised)[pixel] = vec4(image, 1.0f);
+}
+
+// One pass of STAGE_DENOISE (DENOISE_PASS_*) at one pixel.
+PH_FN void denoisePass(BUF_PARAM uint pixel, uint pass) {
+    if (pass == DENOISE_PASS_PREPARE) {
+        denoisePrepare(BUF_ARG pixel);
+    } else {
+        denoiseLevel(BUF_ARG pixel, pass - DENOISE_PASS_LEVEL);
+    }
+}
+
+PH_NAMESPACE_END
+
+#endif
