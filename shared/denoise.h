@@ -97,6 +97,9 @@ PH_FN void denoisePrepare(BUF_PARAM uint pixel) {
     // that of the illumination the levels filter.
     float scale = luminanceOf(demodulation(a.albedo, surface));
     float variance = max(mean2 - mean * mean, 0.0f) / (float(frames) * scale * scale);
+    if (!(variance <= FLOAT_MAX)) {
+        variance = FLOAT_MAX;  // moments that overflowed (an absurd radius): no luminance weight
+    }
 
     float slopeX = depthStep(BUF_ARG x, y, 1, 0, a.depth);
     float slopeY = depthStep(BUF_ARG x, y, 0, 1, a.depth);
@@ -177,6 +180,9 @@ PH_FN void denoiseLevel(BUF_PARAM uint pixel, uint level) {
                 if (dx != 0 || dy != 0) {
                     uint q = uint(qy) * width + uint(qx);
                     c = BUF(denoisePixels)[q].planes[source];
+                    if (!isFinite(vec3(c))) {
+                        continue;  // no neighbour's overflow reaches this pixel
+                    }
                     float wn = pow128(max(dot(normal, BUF(denoisePixels)[q].normal), 0.0f));
                     float distance = float(hole) * length(vec2(float(dx), float(dy)));
                     float wz = abs(depth - BUF(denoisePixels)[q].depth) / (reach * distance + depthFloor);
@@ -190,6 +196,9 @@ PH_FN void denoiseLevel(BUF_PARAM uint pixel, uint level) {
             }
         }
         filtered = vec4(sum / weights, variance);
+        if (!isFinite(vec3(filtered))) {
+            filtered = centre;  // the sums overflowed
+        }
     }
     if (level + 1u < DENOISE_LEVELS) {
         BUF(denoisePixels)[pixel].planes[source ^ 1u] = filtered;
@@ -197,6 +206,9 @@ PH_FN void denoiseLevel(BUF_PARAM uint pixel, uint level) {
     }
     PixelAov a = BUF(aovs)[pixel];
     vec3 image = vec3(filtered) * demodulation(a.albedo, aovSurface(a)) + a.background;
+    if (!isFinite(image)) {
+        image = vec3(BUF(accumulation)[pixel]);  // a finite image stays finite
+    }
     BUF(denoised)[pixel] = vec4(image, 1.0f);
 }
 

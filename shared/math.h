@@ -149,6 +149,9 @@ PH_FN vec3 offsetRayOrigin(vec3 p, vec3 geometricNormal, vec3 direction) {
     return p + geometricNormal * (side * 1.0e-4f * scale);
 }
 
+// Whether every component is a finite number (NaN compares false).
+PH_FN bool isFinite(vec3 v) { return abs(v.x) <= FLOAT_MAX && abs(v.y) <= FLOAT_MAX && abs(v.z) <= FLOAT_MAX; }
+
 // Rec. 709 luminance of linear RGB.
 PH_FN float luminanceOf(vec3 rgb) { return dot(rgb, vec3(0.2126f, 0.7152f, 0.0722f)); }
 

@@ -3,7 +3,9 @@
 // RMSE. Skipped where no CUDA device exists (CI); run on the GPU machine.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include "apps/backends.h"
@@ -58,6 +60,41 @@ TEST_F(CudaVsCpu, EveryEstimatorAndGridInTheParityBuild) {
             compare(scene, s, std::string("cuda-parity-") + toString(e) + "-" + toString(g), true);
         }
     }
+}
+
+// The auxiliary images and the denoiser in the parity build: the AOVs equal the CPU's up to the
+// rounding of luminance and normals, and the denoised image agrees as the images do.
+TEST_F(CudaVsCpu, AovsAndTheDenoiserInTheParityBuild) {
+    Scene scene = defaultScene();
+    RenderSettings s = small();
+    s.estimator = Estimator::Sppm;
+    s.denoise = Denoise::On;
+    auto cpu = createBackend("cpu");
+    BackendOptions options;
+    options.parity = true;
+    auto cuda = createBackend("cuda", options);
+    for (Backend* b : {cpu.get(), cuda.get()}) {
+        b->setScene(scene);
+        b->setSettings(s);
+        for (int f = 0; f < 5; ++f) {
+            b->renderFrame();
+        }
+    }
+    std::vector<PixelAov> a = cpu->readAovs();
+    std::vector<PixelAov> b = cuda->readAovs();
+    ASSERT_EQ(a.size(), b.size());
+    float worst = 0.0f;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        glm::vec3 albedo = glm::abs(a[i].albedo - b[i].albedo);
+        glm::vec3 normal = glm::abs(a[i].normal - b[i].normal);
+        worst = std::max({worst, albedo.x, albedo.y, albedo.z, normal.x, normal.y, normal.z,
+                          std::abs(a[i].depth - b[i].depth) / std::max(a[i].depth, 1.0f),
+                          std::abs(a[i].coverage - b[i].coverage)});
+    }
+    std::printf("AOVs: largest difference %.3g\n", worst);
+    EXPECT_LE(worst, 1e-5f);
+    test::expectImagesClose(cuda->image(), cpu->image(), 1e-4, "cuda-parity-denoised");
+    test::expectImagesClose(cuda->rawImage(), cpu->rawImage(), 1e-4, "cuda-parity-raw");
 }
 
 // The environment (the sky's map, and the studio environment of a model file without lights):
