@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -126,6 +127,20 @@ inline void expectIdenticalPhotonMaps(const PhotonMaps& actual, const PhotonMaps
 }
 
 // Pixels whose values are not bit-identical.
+// The largest difference between two backends' auxiliary images (shared/aov.h): of the albedo, the
+// normal, the coverage, and the depth relative to the larger of it and 1.
+inline float largestAovDifference(const std::vector<PixelAov>& a, const std::vector<PixelAov>& b) {
+    float worst = 0.0f;
+    for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) {
+        glm::vec3 albedo = glm::abs(a[i].albedo - b[i].albedo);
+        glm::vec3 normal = glm::abs(a[i].normal - b[i].normal);
+        worst = std::max({worst, albedo.x, albedo.y, albedo.z, normal.x, normal.y, normal.z,
+                          std::abs(a[i].depth - b[i].depth) / std::max(a[i].depth, 1.0f),
+                          std::abs(a[i].coverage - b[i].coverage)});
+    }
+    return worst;
+}
+
 inline std::size_t differingPixels(const Image& a, const Image& b) {
     if (a.pixels.size() != b.pixels.size()) {
         return std::max(a.pixels.size(), b.pixels.size());

@@ -83,14 +83,7 @@ TEST_F(CudaVsCpu, AovsAndTheDenoiserInTheParityBuild) {
     std::vector<PixelAov> a = cpu->readAovs();
     std::vector<PixelAov> b = cuda->readAovs();
     ASSERT_EQ(a.size(), b.size());
-    float worst = 0.0f;
-    for (std::size_t i = 0; i < a.size(); ++i) {
-        glm::vec3 albedo = glm::abs(a[i].albedo - b[i].albedo);
-        glm::vec3 normal = glm::abs(a[i].normal - b[i].normal);
-        worst = std::max({worst, albedo.x, albedo.y, albedo.z, normal.x, normal.y, normal.z,
-                          std::abs(a[i].depth - b[i].depth) / std::max(a[i].depth, 1.0f),
-                          std::abs(a[i].coverage - b[i].coverage)});
-    }
+    float worst = test::largestAovDifference(a, b);
     std::printf("AOVs: largest difference %.3g\n", worst);
     EXPECT_LE(worst, 1e-5f);
     test::expectImagesClose(cuda->image(), cpu->image(), 1e-4, "cuda-parity-denoised");

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 #include <vector>
 
 #include "apps/backends.h"
@@ -36,6 +37,20 @@ Renders render(const Scene& scene, RenderSettings settings, std::uint32_t frames
     r.raw = backend->rawImage();
     r.aovs = backend->readAovs();
     return r;
+}
+
+// The raw and the denoised image of `frames` frames at the photons and size of `settings` (sppm,
+// seed 3), measured against the reference.
+std::pair<Quality, Quality> rawAndDenoised(const char* sceneFile, const char* referenceFile, RenderSettings settings,
+                                           std::uint32_t frames) {
+    Scene scene = loadSceneFile(test::scenesDir() + "/" + sceneFile);
+    Image reference = readImage(test::dataPath(referenceFile));
+    RenderSettings s = test::sizedSettings(scene.render, settings.width, settings.height, settings.photons);
+    s.estimator = Estimator::Sppm;
+    s.seed = 3;
+    Renders r = render(scene, s, frames);
+    QualityMasks masks(reference);
+    return {measureQuality(r.raw, reference, masks), measureQuality(r.denoised, reference, masks)};
 }
 
 double meanLuminanceIn(const Image& image, std::uint32_t x0, std::uint32_t y0, std::uint32_t x1, std::uint32_t y1) {
@@ -88,15 +103,7 @@ TEST(Denoise, KeepsAFlatWallsEnergy) {
 // (silhouettes, shadow boundaries), and the focus keeps its energy within 2%. (Smaller images are
 // ruled by the estimate's blur, not its noise: there a filter has nothing to remove.)
 TEST(Denoise, LowersTheErrorAndKeepsEdgesAndTheCaustic) {
-    Scene scene = loadSceneFile(test::scenesDir() + "/cornell.json");
-    Image reference = readImage(test::dataPath("cornell-320x240.pfm"));
-    RenderSettings s = test::sizedSettings(scene.render, 320, 240, 25000);
-    s.estimator = Estimator::Sppm;
-    s.seed = 3;
-    Renders r = render(scene, s, 8);
-    QualityMasks masks(reference);
-    Quality raw = measureQuality(r.raw, reference, masks);
-    Quality denoised = measureQuality(r.denoised, reference, masks);
+    auto [raw, denoised] = rawAndDenoised("cornell.json", "cornell-320x240.pfm", test::sizedSettings({}, 320, 240, 25000), 8);
     std::printf("cornell: away from the focus %.4f raw, %.4f denoised; SSIM %.4f, %.4f; edges %.4f, %.4f; "
                 "focus energy %.4f, %.4f\n", raw.away, denoised.away, raw.ssim, denoised.ssim, raw.edges,
                 denoised.edges, raw.focusEnergy, denoised.focusEnergy);
@@ -110,15 +117,7 @@ TEST(Denoise, LowersTheErrorAndKeepsEdgesAndTheCaustic) {
 // filter the light, not the textures. A blurred texture would raise the error at the reference's
 // edges, here mostly the textures' own.
 TEST(Denoise, KeepsTextures) {
-    Scene scene = loadSceneFile(test::scenesDir() + "/textured.glb");
-    Image reference = readImage(test::dataPath("textured-128x96.pfm"));
-    RenderSettings s = test::sizedSettings(scene.render, 128, 96, 4000);
-    s.estimator = Estimator::Sppm;
-    s.seed = 3;
-    Renders r = render(scene, s, 8);
-    QualityMasks masks(reference);
-    Quality raw = measureQuality(r.raw, reference, masks);
-    Quality denoised = measureQuality(r.denoised, reference, masks);
+    auto [raw, denoised] = rawAndDenoised("textured.glb", "textured-128x96.pfm", test::sizedSettings({}, 128, 96, 4000), 8);
     std::printf("textured.glb: rmse %.4f raw, %.4f denoised; edges %.4f, %.4f; SSIM %.4f, %.4f\n", raw.whole,
                 denoised.whole, raw.edges, denoised.edges, raw.ssim, denoised.ssim);
     EXPECT_LE(denoised.whole, raw.whole * 1.01);

@@ -236,14 +236,9 @@ TEST_F(VulkanBackendTest, AovsAndTheDenoiserAgreeWithCpu) {
     std::vector<PixelAov> b = vulkan_->readAovs();
     ASSERT_EQ(a.size(), std::size_t(settings.width) * settings.height);
     ASSERT_EQ(a.size(), b.size());
-    float worst = 0.0f;
+    float worst = test::largestAovDifference(a, b);
     float worstMoment = 0.0f;
     for (std::size_t i = 0; i < a.size(); ++i) {
-        glm::vec3 albedo = glm::abs(a[i].albedo - b[i].albedo);
-        glm::vec3 normal = glm::abs(a[i].normal - b[i].normal);
-        worst = std::max({worst, albedo.x, albedo.y, albedo.z, normal.x, normal.y, normal.z,
-                          std::abs(a[i].depth - b[i].depth) / std::max(a[i].depth, 1.0f),
-                          std::abs(a[i].coverage - b[i].coverage)});
         worstMoment = std::max(worstMoment, std::abs(a[i].luminance - b[i].luminance) / std::max(a[i].luminance, 1.0f));
     }
     std::printf("AOVs: largest difference %.3g (moments %.3g)\n", worst, worstMoment);
