@@ -38,6 +38,19 @@ expect 0 "" "$tmp/centred.json" "${small[@]}" -o "$tmp/off.pfm" --pixel-center -
 cmp -s "$tmp/jittered.pfm" "$tmp/off.pfm" && ! cmp -s "$tmp/jittered.pfm" "$tmp/centred.pfm" \
   || { echo "FAIL: --no-pixel-center did not undo the scene file's pixel_center"; failures=$((failures + 1)); }
 expect 0 "" "${small[@]}" -o "$tmp/n.png" --deterministic --no-deterministic
+# The denoiser: on by default, off by --denoise off; an EXR carries the raw image and the AOVs
+# as layers (OpenEXR keeps channel names as text in its header).
+expect 0 "" "${small[@]}" --frames 2 -o "$tmp/den.pfm"
+expect 0 "" "${small[@]}" --frames 2 -o "$tmp/raw.pfm" --denoise off
+! cmp -s "$tmp/den.pfm" "$tmp/raw.pfm" || { echo "FAIL: --denoise off changed nothing"; failures=$((failures + 1)); }
+expect 2 "--denoise" "${small[@]}" -o "$tmp/x.png" --denoise maybe
+expect 0 "" "${small[@]}" --frames 2 -o "$tmp/aov.exr" --aov
+for channel in raw.R albedo.G normal.Z depth.Z variance.Y; do
+  grep -qaF "$channel" "$tmp/aov.exr" || { echo "FAIL: --aov: no channel $channel in the EXR"; failures=$((failures + 1)); }
+done
+# A device that is not there: the list of devices on the message's one line.
+"$render" "${small[@]}" --backend vulkan --device 9 -o "$tmp/x.png" 2>"$tmp/err" >/dev/null
+! grep -qF 'x0a' "$tmp/err" || { echo "FAIL: --device 9 printed an escaped newline:"; cat "$tmp/err"; failures=$((failures + 1)); }
 expect 2 "--deterministic" "${small[@]}" -o "$tmp/n.png" --no-deterministic=maybe
 for f in a.png a.exr a.pfm b.png stats.json; do
   [ -s "$tmp/$f" ] || { echo "FAIL: $f was not written"; failures=$((failures + 1)); }

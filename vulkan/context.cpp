@@ -123,7 +123,8 @@ std::string checkDevice(DeviceCandidate& c, VkSurfaceKHR surface, const std::vec
 std::string describe(const std::vector<DeviceCandidate>& candidates) {
     std::string s;
     for (std::size_t i = 0; i < candidates.size(); ++i) {
-        s += "\n  " + std::to_string(i) + ": " + candidates[i].properties.deviceName;
+        // On the one line of the message: printable() would show a newline as \x0a.
+        s += (i == 0 ? " " : "; ") + std::to_string(i) + ": " + candidates[i].properties.deviceName;
         if (!candidates[i].unsuitable.empty()) {
             s += " (unsuitable: " + candidates[i].unsuitable + ")";
         }
