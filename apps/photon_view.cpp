@@ -61,17 +61,26 @@ int run(int argc, char** argv) {
     addRenderOptions(app, render);
     // --frames makes a run scripted; --view also takes the viewer's own "dots".
     app.get_option("--frames")->description("Render this many frames, then exit (scripted use)");
-    app.get_option("--view")->description("What to show: final|direct|global|caustic|dots|grid");
+    app.get_option("--view")->description("What to show: final|direct|global|caustic|dots|grid|albedo|normal|depth");
     if (int code = parseCommandLine(app, argc, argv); code >= 0) {
         return code;
     }
 
     std::string& viewName = render.values["--view"];
-    if (viewName == "dots") {
-        o.view = viewer::DisplayView::Dots;
+    // The viewer's own views: the photon dots and the auxiliary images.
+    bool ownView = false;
+    for (viewer::DisplayView v : {viewer::DisplayView::Dots, viewer::DisplayView::Albedo, viewer::DisplayView::Normal,
+                                  viewer::DisplayView::Depth}) {
+        if (viewName == viewer::toString(v)) {
+            o.view = v;
+            ownView = true;
+        }
+    }
+    if (ownView) {
         viewName = "final";
     } else if (View v; !viewName.empty() && !parse(viewName, v)) {
-        throw InputError("--view: unknown value '" + viewName + "' (expected final|direct|global|caustic|dots|grid)");
+        throw InputError("--view: unknown value '" + viewName +
+                         "' (expected final|direct|global|caustic|dots|grid|albedo|normal|depth)");
     }
     o.paths = render.paths;
     o.scene = app.count("scene") == 0 ? defaultScene() : loadSceneFile(o.scenePath, o.paths);
@@ -80,7 +89,7 @@ int run(int argc, char** argv) {
     applyRenderOptions(app, render, o.settings);
     chooseDefaults(o.settings, true);  // the viewer accumulates while the view stays
     validateSettings(o.settings);
-    if (o.view != viewer::DisplayView::Dots) {
+    if (!ownView) {
         const viewer::DisplayView views[] = {viewer::DisplayView::Final, viewer::DisplayView::Direct,
                                              viewer::DisplayView::Global, viewer::DisplayView::Caustic,
                                              viewer::DisplayView::Grid};

@@ -14,6 +14,12 @@ PH_CONST uint DISPLAY_BINDING_DOTS = 1u;   // the photon dots: three uint per pi
 // What the display pass shows (DisplayPush::source).
 PH_CONST uint DISPLAY_IMAGE = 0u;  // the accumulated image
 PH_CONST uint DISPLAY_DOTS = 1u;   // the photon dots
+// The auxiliary images, read from the backend's AOV buffer bound as the image (a PixelAov is
+// four vec4: albedo and depth, normal and coverage, ...).
+PH_CONST uint DISPLAY_ALBEDO = 2u;
+PH_CONST uint DISPLAY_NORMAL = 3u;  // as a normal map: 0.5 n + 0.5
+PH_CONST uint DISPLAY_DEPTH = 4u;   // 2^exposure / (1 + depth), black where nothing was met
+PH_CONST uint DISPLAY_AOV_VEC4S = 4u;
 
 // The photon-dots pass's own set (set 1 of its layout; set 0 is the backend's).
 PH_CONST uint DOTS_BINDING_DOTS = 0u;

@@ -18,6 +18,19 @@ void main() {
     uint y = min(target.y * push.height / push.targetHeight, push.height - 1u);
     uint pixel = y * push.width + x;
     vec3 value;
+    if (push.source == DISPLAY_ALBEDO) {
+        color = vec4(tonemap(vec3(radiance[DISPLAY_AOV_VEC4S * pixel]), 1.0f, TONEMAP_CLAMP), 1.0f);
+        return;
+    }
+    if (push.source == DISPLAY_NORMAL) {
+        color = vec4(0.5f * vec3(radiance[DISPLAY_AOV_VEC4S * pixel + 1u]) + 0.5f, 1.0f);
+        return;
+    }
+    if (push.source == DISPLAY_DEPTH) {
+        float depth = radiance[DISPLAY_AOV_VEC4S * pixel].w;
+        color = vec4(vec3(depth > 0.0f ? min(push.scale / (1.0f + depth), 1.0f) : 0.0f), 1.0f);
+        return;
+    }
     if (push.source == DISPLAY_DOTS) {
         value = vec3(float(dots[3u * pixel]), float(dots[3u * pixel + 1u]), float(dots[3u * pixel + 2u])) / DOTS_FIXED_POINT;
     } else {

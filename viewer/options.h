@@ -11,8 +11,10 @@
 namespace photon::viewer {
 
 // What the image shows: the backend's views, and the viewer's own photon dots.
-enum class DisplayView : std::uint32_t { Final, Direct, Global, Caustic, Dots, Grid };
-constexpr std::uint32_t kDisplayViewCount = 6;
+// Albedo, Normal, Depth: the auxiliary images (shared/aov.h) the denoiser is guided by.
+enum class DisplayView : std::uint32_t { Final, Direct, Global, Caustic, Dots, Grid, Albedo, Normal, Depth };
+constexpr std::uint32_t kDisplayViewCount = 9;
+inline bool isAovView(DisplayView v) { return v == DisplayView::Albedo || v == DisplayView::Normal || v == DisplayView::Depth; }
 const char* toString(DisplayView view);
 
 }  // namespace photon::viewer

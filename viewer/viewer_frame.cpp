@@ -53,7 +53,10 @@ void Viewer::drawFrame() {
     if (dots) {
         dots_->resize(params.width, params.height);
     }
-    VkBuffer image = denoises(backend_->settings()) ? backend_->buffer(BINDING_DENOISED) : backend_->accumulationBuffer();
+    bool aov = isAovView(state_.view) && keepsAovs(backend_->settings());
+    VkBuffer image = aov                                   ? backend_->buffer(BINDING_AOVS)
+                     : denoises(backend_->settings()) ? backend_->buffer(BINDING_DENOISED)
+                                                      : backend_->accumulationBuffer();
     display_->setSources(image, dots_->buffer());
 
     bool scripted = options_.frames > 0;
@@ -95,6 +98,11 @@ void Viewer::drawFrame() {
     push.targetWidth = target.extent.width;
     push.targetHeight = target.extent.height;
     push.source = dots ? DISPLAY_DOTS : DISPLAY_IMAGE;
+    if (aov) {
+        push.source = state_.view == DisplayView::Albedo   ? DISPLAY_ALBEDO
+                      : state_.view == DisplayView::Normal ? DISPLAY_NORMAL
+                                                           : DISPLAY_DEPTH;
+    }
     push.curve = std::uint32_t(state_.tonemap);
     push.scale = std::exp2(state_.exposure);
     display_->begin(cmd, target);

@@ -30,6 +30,9 @@ View backendView(DisplayView view) {
         case DisplayView::Caustic: return View::Caustic;
         case DisplayView::Dots: return View::Direct;
         case DisplayView::Grid: return View::Grid;
+        case DisplayView::Albedo:
+        case DisplayView::Normal:
+        case DisplayView::Depth: return View::Final;
     }
     throw std::logic_error("unknown display view");
 }
@@ -80,10 +83,12 @@ void Viewer::applySettings() {
         s.width = std::max(1u, std::uint32_t(std::lround(double(extent.width) * state_.renderScale)));
         s.height = std::max(1u, std::uint32_t(std::lround(double(extent.height) * state_.renderScale)));
         s.view = backendView(state_.view);
+        s.aov = s.aov || isAovView(state_.view);  // the auxiliary images are kept to be shown
         s.exposure = state_.exposure;  // display only: kept in step, never a reason to restart
         s.tonemap = state_.tonemap;
         const RenderSettings& current = backend_->settings();
-        if (!changed && s.width == current.width && s.height == current.height && s.view == current.view) {
+        if (!changed && s.width == current.width && s.height == current.height && s.view == current.view &&
+            s.aov == current.aov) {
             return;
         }
         try {
