@@ -160,11 +160,11 @@ PH_CONST uint FLAG_DENOISE = 32u;        // the denoise stage filters the image 
 
 // The denoiser (denoise.h): an edge-avoiding à-trous wavelet filter guided by variance (Dammertz
 // et al. 2010; Schied et al. 2017, SVGF), DENOISE_LEVELS passes of a 5 × 5 B3-spline kernel with
-// holes 2^level. Its edge-stopping functions: normals max(0, n_p·n_q)^DENOISE_SIGMA_NORMAL,
+// holes 2^level. Its edge-stopping functions: normals max(0, n_p·n_q)^(2^DENOISE_NORMAL_SQUARINGS),
 // depth exp(-|z_p - z_q| / (DENOISE_SIGMA_DEPTH |∇z| |p - q|)), luminance
 // exp(-|l_p - l_q| / (DENOISE_SIGMA_LUMINANCE σ_l)).
 PH_CONST uint DENOISE_LEVELS = 5u;
-PH_CONST float DENOISE_SIGMA_NORMAL = 128.0f;
+PH_CONST uint DENOISE_NORMAL_SQUARINGS = 7u;  // the exponent 128, SVGF's
 PH_CONST float DENOISE_SIGMA_DEPTH = 1.0f;
 PH_CONST float DENOISE_SIGMA_LUMINANCE = 4.0f;
 // ... and albedo exp(-|a_p - a_q|₁ / DENOISE_SIGMA_ALBEDO): demodulation holds only where the

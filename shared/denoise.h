@@ -106,17 +106,16 @@ PH_FN void denoisePrepare(BUF_PARAM uint pixel) {
     // Member by member: glslang stores a whole struct with an array member into a buffer with
     // invalid SPIR-V (the array's stride makes the two struct types differ).
     BUF(denoisePixels)[pixel].planes[0] = vec4(illumination, variance);
-    BUF(denoisePixels)[pixel].planes[1] = vec4(0.0f);
     BUF(denoisePixels)[pixel].normal = normal;
     BUF(denoisePixels)[pixel].depth = a.coverage > 0.0f ? a.depth : 0.0f;
     BUF(denoisePixels)[pixel].depthSlope = length(vec2(max(slopeX, 0.0f), max(slopeY, 0.0f)));
     BUF(denoisePixels)[pixel].albedo = a.albedo;
 }
 
-// x^128 by seven squarings: the normal weight's exponent, DENOISE_SIGMA_NORMAL.
-PH_FN float pow128(float x) {
+// The normal weight x^(2^DENOISE_NORMAL_SQUARINGS), by squarings.
+PH_FN float normalWeight(float x) {
     float y = x;
-    for (uint i = 0u; i < 7u; ++i) {
+    for (uint i = 0u; i < DENOISE_NORMAL_SQUARINGS; ++i) {
         y *= y;
     }
     return y;
@@ -183,7 +182,7 @@ PH_FN void denoiseLevel(BUF_PARAM uint pixel, uint level) {
                     if (!isFinite(vec3(c))) {
                         continue;  // no neighbour's overflow reaches this pixel
                     }
-                    float wn = pow128(max(dot(normal, BUF(denoisePixels)[q].normal), 0.0f));
+                    float wn = normalWeight(max(dot(normal, BUF(denoisePixels)[q].normal), 0.0f));
                     float distance = float(hole) * length(vec2(float(dx), float(dy)));
                     float wz = abs(depth - BUF(denoisePixels)[q].depth) / (reach * distance + depthFloor);
                     float wl = abs(luminance - luminanceOf(vec3(c))) / sigmaL;
