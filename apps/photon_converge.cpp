@@ -11,6 +11,7 @@
 //   photon-converge scenes/smallpt.json --reference ref.pfm --backend cuda --estimators sppm,progressive,radius
 //                   --photons 1000000 --frames 1024 --json smallpt-error.json
 //   photon-converge --compare image.pfm --reference ref.pfm     (one image: its error)
+//   photon-converge scenes/cornell.json --camera-path orbit:20 --backend cuda  (a moving view: apps/orbit_error.h)
 #include <cstdio>
 #include <sstream>
 
@@ -18,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/backends.h"
+#include "apps/orbit_error.h"
 #include "apps/render_options.h"
 #include "core/image/image_error.h"
 #include "core/loaders/scene_loader.h"
@@ -77,6 +79,18 @@ nlohmann::json errorJson(const ImageError& e, const Quality& q) {
             {"focus_energy_ratio", q.focusEnergy}, {"focus_peak_ratio", q.focusPeak}, {"ssim", q.ssim}};
 }
 
+// --set KEY=VALUE ...
+void applyOverrides(RenderSettings& settings, const std::vector<std::string>& overrides) {
+    for (const std::string& o : overrides) {
+        std::size_t eq = o.find('=');
+        const SettingSpec* spec = eq == std::string::npos ? nullptr : findSetting(o.substr(0, eq));
+        if (spec == nullptr) {
+            throw InputError("--set " + o + ": expected KEY=VALUE with a render setting's key");
+        }
+        setSetting(settings, *spec, o.substr(eq + 1), "--set " + o.substr(0, eq));
+    }
+}
+
 // The checkpoints of --times: milliseconds, ascending.
 std::vector<double> parseTimes(const std::string& text) {
     std::vector<double> times;
@@ -107,7 +121,7 @@ int run(int argc, char** argv) {
     BackendOptions options;
     std::vector<std::string> overrides;
     app.add_option("scene", scenePath, "Scene file (its render settings, then the options below)");
-    app.add_option("--reference", referencePath, "The converged image (.pfm or .exr)")->required();
+    app.add_option("--reference", referencePath, "The converged image (.pfm or .exr); not with --camera-path");
     app.add_option("--compare", comparePath, "Only compare this image (.pfm or .exr) with the reference");
     app.add_option("--backend", backendName, "auto|cpu|cuda|vulkan")->check(CLI::IsMember({"auto", "cpu", "cuda", "vulkan"}));
     app.add_option("--device", options.device, "GPU to use: index or part of its name");
@@ -121,8 +135,45 @@ int run(int argc, char** argv) {
                    "Checkpoints in milliseconds of stage time, e.g. 16,33,100,400 (in place of frames 1, 2, 4, ...; "
                    "--frames still caps the frames)");
     app.add_option("--images", imagesDir, "Write each checkpoint's images as PFM into this folder");
+    std::string cameraPath;
+    OrbitMeasurement orbit;
+    app.add_option("--camera-path", cameraPath,
+                   "orbit:SECONDS: the error while the camera moves, restarting and reprojecting, against references "
+                   "rendered at sample frames' cameras (no --reference)");
+    app.add_option("--path-frames", orbit.frames, "--camera-path: frames along it, 1/60 s apart")->check(CLI::Range(2u, 100000u));
+    app.add_option("--samples", orbit.samples, "--camera-path: frames compared, evenly spread")->check(CLI::Range(1u, 1000u));
+    app.add_option("--reference-frames", orbit.referenceFrames, "--camera-path: frames of each sample's reference")
+        ->check(CLI::Range(1u, 1000000u));
     if (int code = parseCommandLine(app, argc, argv); code >= 0) {
         return code;
+    }
+    if (!cameraPath.empty()) {
+        orbit.path = parseCameraPath(cameraPath, "--camera-path");
+        if (!referencePath.empty() || !comparePath.empty() || scenePath.empty()) {
+            throw InputError("--camera-path: give a scene and no --reference or --compare (it renders its own references)");
+        }
+        if (!jsonPath.empty()) {
+            checkOutputPath(jsonPath, "JSON");
+        }
+        Scene scene = loadSceneFile(scenePath);
+        RenderSettings s = scene.render;
+        applyOverrides(s, overrides);
+        chooseDefaults(s, true);
+        chooseInteractive(s);
+        chooseSpectral(s, scene);
+        auto make = [&] { return createBackend(backendName, options); };
+        choosePhotons(s, make()->runsOnCpu());
+        validateSettings(s);
+        nlohmann::json out = measureOrbit(make, scene, s, orbit);
+        out["scene"] = scene.name;
+        out["photons_per_frame"] = s.photons;
+        if (!jsonPath.empty()) {
+            writeOutputFile(jsonPath, out.dump(2) + "\n", "JSON");
+        }
+        return 0;
+    }
+    if (referencePath.empty()) {
+        throw InputError("--reference is required (or --camera-path)");
     }
     Image reference = readImage(referencePath);
     Window window = parseWindow(windowText, reference);
@@ -148,14 +199,7 @@ int run(int argc, char** argv) {
     }
     Scene scene = loadSceneFile(scenePath);
     RenderSettings base = scene.render;
-    for (const std::string& o : overrides) {
-        std::size_t eq = o.find('=');
-        const SettingSpec* spec = eq == std::string::npos ? nullptr : findSetting(o.substr(0, eq));
-        if (spec == nullptr) {
-            throw InputError("--set " + o + ": expected KEY=VALUE with a render setting's key");
-        }
-        setSetting(base, *spec, o.substr(eq + 1), "--set " + o.substr(0, eq));
-    }
+    applyOverrides(base, overrides);
     if (base.width != reference.width || base.height != reference.height) {
         throw InputError("--reference: " + referencePath + " is " + std::to_string(reference.width) + "x" +
                          std::to_string(reference.height) + ", the render " + std::to_string(base.width) + "x" +

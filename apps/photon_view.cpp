@@ -58,6 +58,10 @@ int run(int argc, char** argv) {
         ->expected(2)
         ->option_text("K WxH");
     app.add_option("--stats", o.statsPath, "Write the median frame times as JSON at exit");
+    std::string cameraPath;
+    app.add_option("--camera-path", cameraPath,
+                   "Move the camera along a path: orbit:SECONDS turns it about what it looks at once every SECONDS "
+                   "(with --frames, 1/60 s a frame)");
     addRenderOptions(app, render);
     // --frames makes a run scripted; --view also takes the viewer's own "dots".
     app.get_option("--frames")->description("Render this many frames, then exit (scripted use)");
@@ -88,12 +92,17 @@ int run(int argc, char** argv) {
     o.settings = o.scene.render;
     applyRenderOptions(app, render, o.settings);
     chooseDefaults(o.settings, true);  // the viewer accumulates while the view stays
+    chooseInteractive(o.settings);     // ... and carries it along when the view moves
     validateSettings(o.settings);
     if (!ownView) {
         const viewer::DisplayView views[] = {viewer::DisplayView::Final, viewer::DisplayView::Direct,
                                              viewer::DisplayView::Global, viewer::DisplayView::Caustic,
                                              viewer::DisplayView::Grid};
         o.view = views[std::uint32_t(o.settings.view)];
+    }
+    if (!cameraPath.empty()) {
+        o.cameraPath = parseCameraPath(cameraPath, "--camera-path");
+        o.followPath = true;
     }
     o.vsync = vsync == "on";
     o.hud = !noHud;

@@ -7,6 +7,7 @@
 
 #include "core/system/parallel.h"
 #include "shared/denoise.h"
+#include "shared/reproject.h"
 #include "shared/eye_trace.h"
 #include "shared/photon_map.h"
 #include "shared/photon_trace.h"
@@ -170,6 +171,15 @@ private:
 
     void tracePixels() {
         forEachPixel([&](std::uint32_t p) { bindings_.hitPoints[p] = tracePixel(bindings_, p); });
+    }
+
+    void reproject() {
+        if ((bindings_.params.flags & FLAG_REPROJECT) == 0u) {
+            return;
+        }
+        for (std::uint32_t pass = 0; pass < REPROJECT_PASS_COUNT; ++pass) {
+            forEachPixel([&](std::uint32_t p) { reprojectPass(bindings_, p, pass); });
+        }
     }
 
     void gather() {

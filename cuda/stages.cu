@@ -8,6 +8,7 @@
 #include "core/system/error.h"
 #include "cuda_check.h"
 #include "shared/denoise.h"
+#include "shared/reproject.h"
 #include "shared/eye_trace.h"
 #include "shared/gather.h"
 #include "shared/photon_map.h"
@@ -111,6 +112,13 @@ __global__ void accumulateKernel(const __grid_constant__ Bindings b) {
     }
 }
 
+__global__ void reprojectKernel(const __grid_constant__ Bindings b, uint pass) {
+    uint p;
+    if (pixelOf(b, p)) {
+        reprojectPass(b, p, pass);
+    }
+}
+
 __global__ void denoiseKernel(const __grid_constant__ Bindings b, uint pass) {
     uint p;
     if (pixelOf(b, p)) {
@@ -197,6 +205,17 @@ void gather(const Bindings& b, const LaunchConfig& c, cudaStream_t s) {
 void tracePrimaryRays(const Bindings& b, std::uint32_t* hits, const LaunchConfig& c, cudaStream_t s) {
     tracePrimaryRaysKernel<<<pixelGrid(b, c), dim3(c.pixelBlockX, c.pixelBlockY), 0, s>>>(b, hits);
     CUDA_CHECK_LAUNCH("tracePrimaryRays");
+}
+
+// Its passes in order, one launch each (restore reads what save wrote of other pixels).
+void reproject(const Bindings& b, const LaunchConfig& c, cudaStream_t s) {
+    if ((b.params.flags & FLAG_REPROJECT) == 0u) {
+        return;
+    }
+    for (uint pass = 0; pass < REPROJECT_PASS_COUNT; ++pass) {
+        reprojectKernel<<<pixelGrid(b, c), dim3(c.pixelBlockX, c.pixelBlockY), 0, s>>>(b, pass);
+        CUDA_CHECK_LAUNCH("reproject");
+    }
 }
 
 void accumulate(const Bindings& b, const LaunchConfig& c, cudaStream_t s) {

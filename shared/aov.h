@@ -27,7 +27,7 @@ PH_FN PixelAov emptyPixelAov() {
     a.coverage = 0.0f;
     a.luminance = 0.0f;
     a.luminance2 = 0.0f;
-    a.pad0 = 0.0f;
+    a.frames = 0.0f;
     a.pad1 = 0.0f;
     a.background = vec3(0.0f);
     a.pad2 = 0.0f;
@@ -51,7 +51,7 @@ PH_FN void accumulateAov(BUF_PARAM uint pixel, vec4 frameRadiance) {
     // The light the denoiser filters: a frame with a surface's, without its caustic map's part (w).
     float l = surface ? luminanceOf(vec3(frameRadiance)) - frameRadiance.w : 0.0f;
     vec3 background = surface ? vec3(0.0f) : vec3(frameRadiance);
-    uint n = BUF(params).accumulated;
+    uint n = historyFrames(BUF_ARG pixel);
     PixelAov a = emptyPixelAov();  // (a ?: of a local and a buffer struct is invalid SPIR-V from glslang)
     if (n > 0u) {
         a = BUF(aovs)[pixel];
@@ -71,6 +71,7 @@ PH_FN void accumulateAov(BUF_PARAM uint pixel, vec4 frameRadiance) {
     a.background += (background - a.background) / k;
     a.luminance += (l - a.luminance) / k;
     a.luminance2 += (l2 - a.luminance2) / k;
+    a.frames = k;
     BUF(aovs)[pixel] = a;
 }
 

@@ -46,7 +46,8 @@
     X(PHOTON_ORDER, 27u, uint, photonOrder, RW, ORDERED_PHOTON)              \
     X(AOVS, 28u, PixelAov, aovs, RW, AOV_PIXEL)                              \
     X(DENOISE, 29u, DenoisePixel, denoisePixels, RW, DENOISE_PIXEL)         \
-    X(DENOISED, 30u, vec4, denoised, RW, DENOISE_PIXEL)
+    X(DENOISED, 30u, vec4, denoised, RW, DENOISE_PIXEL)                    \
+    X(HISTORY, 31u, HistoryPixel, history, RW, HISTORY_PIXEL)
 
 PH_NAMESPACE_BEGIN
 
@@ -60,7 +61,8 @@ PH_CONST uint BUFFER_PER_SPPM_PIXEL = 5u;  // width × height with the sppm esti
 PH_CONST uint BUFFER_PER_ORDERED_PHOTON = 6u;  // ORDER_ARRAYS per photon for deterministic maps, else one
 PH_CONST uint BUFFER_PER_AOV_PIXEL = 7u;      // width × height when the auxiliary images are kept, else one
 PH_CONST uint BUFFER_PER_DENOISE_PIXEL = 8u;  // width × height when the denoiser runs, else one
-PH_CONST uint BUFFER_SIZE_CLASS_COUNT = 9u;
+PH_CONST uint BUFFER_PER_HISTORY_PIXEL = 9u;  // width × height when the history follows the camera (reproject.h), else one
+PH_CONST uint BUFFER_SIZE_CLASS_COUNT = 10u;
 
 PH_CONST uint BINDING_PARAMS = 0u;  // FrameParams (uniform)
 #define PH_BINDING_CONSTANT(NAME, b, T, name, access, sizeClass) PH_CONST uint BINDING_##NAME = b;

@@ -157,6 +157,23 @@ PH_CONST uint FLAG_DETERMINISTIC = 4u;   // the photon maps in canonical order (
 PH_CONST uint FLAG_SPECTRAL = 8u;        // paths carry the frame's three wavelengths (spectral.h)
 PH_CONST uint FLAG_AOVS = 16u;           // accumulate keeps the auxiliary images (aov.h)
 PH_CONST uint FLAG_DENOISE = 32u;        // the denoise stage filters the image (denoise.h); implies FLAG_AOVS
+PH_CONST uint FLAG_REPROJECT = 64u;      // the camera moved: the reproject stage carries the history (reproject.h); implies FLAG_AOVS
+
+// Temporal reprojection (reproject.h). A pixel keeps the history of the pixel that saw its surface
+// in the frame before if that one's mean depth is within this share of the surface's distance
+// from the previous camera and its mean normal's direction within acos(REPROJECT_NORMAL_COS) of
+// the surface's (45°: a pixel across a right-angled corner, whose frames saw both sides, still
+// passes); a carried history counts at most REPROJECT_MAX_FRAMES frames.
+PH_CONST float REPROJECT_DEPTH_TOLERANCE = 0.05f;
+PH_CONST float REPROJECT_SPECULAR_DEPTH_TOLERANCE = 0.25f;  // ... for a path through mirrors or glass
+PH_CONST float REPROJECT_NORMAL_COS = 0.7f;
+PH_CONST uint REPROJECT_MAX_FRAMES = 32u;
+// Below this sum of bilinear weights of the pixels that saw the same surface, a pixel starts again.
+PH_CONST float REPROJECT_MIN_WEIGHT = 0.01f;
+// Its passes: every pixel's history set aside, then each pixel's taken from where its point was.
+PH_CONST uint REPROJECT_PASS_SAVE = 0u;
+PH_CONST uint REPROJECT_PASS_RESTORE = 1u;
+PH_CONST uint REPROJECT_PASS_COUNT = 2u;
 
 // The denoiser (denoise.h): an edge-avoiding à-trous wavelet filter guided by variance (Dammertz
 // et al. 2010; Schied et al. 2017, SVGF), DENOISE_LEVELS passes of a 5 × 5 B3-spline kernel with

@@ -62,7 +62,7 @@ PH_FN void denoisePrepare(BUF_PARAM uint pixel) {
     PixelAov a = BUF(aovs)[pixel];
     bool surface = aovSurface(a);
     vec3 illumination = (vec3(BUF(accumulation)[pixel]) - a.background) / demodulation(a.albedo, surface);
-    uint frames = BUF(params).accumulated + 1u;
+    uint frames = max(uint(a.frames), 1u);  // this frame's included (history.h)
 
     // The variance of the mean of `frames` frames: the pixel's own moments, or while they are
     // few its neighbours' on the same surface.

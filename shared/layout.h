@@ -186,6 +186,7 @@ struct PH_ALIGN16 FrameParams {
     // the paths this renderer traces, [pathFirst, pathFirst + pathCount) of the frame's
     // globalPaths + causticPaths: all of them, or one rank's share when several GPUs split a frame
     SpectralParams spectrum;
+    Camera previousCamera;  // under FLAG_REPROJECT: the camera of the frame before (reproject.h)
 };
 
 // ---- Photon maps ------------------------------------------------------------------------------
@@ -238,9 +239,18 @@ struct PH_ALIGN16 SppmPixel {
 struct PH_ALIGN16 PixelAov {
     vec3 albedo; float depth;      // reflectance at the path's end (times the path's weight); its path length, among frames that end on a surface
     vec3 normal; float coverage;   // mean shading normal (0 where paths escape); share of frames whose path ended on a surface
-    float luminance; float luminance2; float pad0; float pad1;
-    // luminance, luminance2: moments of the frames' luminance (denoise.h's variance)
+    float luminance; float luminance2; float frames; float pad1;
+    // luminance, luminance2: moments of the frames' luminance (denoise.h's variance); frames: how
+    // many frames these means hold, the pixel's history (history.h)
     vec3 background; float pad2;   // mean radiance of the frames whose path met no such surface (emitters, the sky)
+};
+
+// A pixel's means as the frame before left them, set aside by the reproject stage's first pass so
+// that its second can move them to where the camera now sees the same surface (reproject.h).
+struct PH_ALIGN16 HistoryPixel {
+    SppmPixel sppm;     // under the sppm estimator
+    vec4 accumulation;
+    PixelAov aov;
 };
 
 // The denoiser's state of one pixel (denoise.h): the demodulated image and its variance, read
@@ -257,6 +267,10 @@ PH_NAMESPACE_END
 namespace photon {
 PH_SIZE(PixelAov, 64); PH_OFFSET(PixelAov, background, 48); PH_OFFSET(PixelAov, depth, 12); PH_OFFSET(PixelAov, normal, 16);
 PH_OFFSET(PixelAov, coverage, 28); PH_OFFSET(PixelAov, luminance, 32); PH_OFFSET(PixelAov, luminance2, 36);
+PH_OFFSET(PixelAov, frames, 40);
+PH_SIZE(HistoryPixel, 16 + MAP_COUNT * 16 + 4 * SPPM_COUNT_SLOTS + 16 + 64); PH_OFFSET(HistoryPixel, sppm, 0);
+PH_OFFSET(HistoryPixel, accumulation, 16 + MAP_COUNT * 16 + 4 * SPPM_COUNT_SLOTS);
+PH_OFFSET(HistoryPixel, aov, 16 + MAP_COUNT * 16 + 4 * SPPM_COUNT_SLOTS + 16);
 PH_SIZE(DenoisePixel, 64); PH_OFFSET(DenoisePixel, planes, 0); PH_OFFSET(DenoisePixel, normal, 32);
 PH_OFFSET(DenoisePixel, depth, 44); PH_OFFSET(DenoisePixel, albedo, 48); PH_OFFSET(DenoisePixel, depthSlope, 60);
 PH_SIZE(Sphere, 32); PH_OFFSET(Sphere, radius, 12); PH_OFFSET(Sphere, material, 16);
@@ -294,13 +308,14 @@ PH_OFFSET(GridParams, cellOffset, 28); PH_OFFSET(GridParams, photonOffset, 32);
 PH_OFFSET(GridParams, radius, 40); PH_OFFSET(GridParams, pad0, 44);
 PH_SIZE(SppmMapParams, 16); PH_OFFSET(SppmMapParams, batches, 8);
 PH_SIZE(SpectralParams, 128); PH_OFFSET(SpectralParams, cauchy, 16); PH_OFFSET(SpectralParams, toRgb0, 80);
-PH_SIZE(FrameParams, 64 + 48 + MAP_COUNT * (48 + 16) + 6 * 16 + 128); PH_OFFSET(FrameParams, scene, 64);
+PH_SIZE(FrameParams, 64 + 48 + MAP_COUNT * (48 + 16) + 6 * 16 + 128 + 64); PH_OFFSET(FrameParams, scene, 64);
 PH_OFFSET(FrameParams, grids, 112); PH_OFFSET(FrameParams, sppm, 112 + MAP_COUNT * 48);
 PH_OFFSET(FrameParams, width, 112 + MAP_COUNT * 64);
 PH_OFFSET(FrameParams, globalPaths, 128 + MAP_COUNT * 64); PH_OFFSET(FrameParams, estimator, 144 + MAP_COUNT * 64);
 PH_OFFSET(FrameParams, gatherRays, 160 + MAP_COUNT * 64); PH_OFFSET(FrameParams, pad2, 176 + MAP_COUNT * 64);
 PH_OFFSET(FrameParams, alpha, 188 + MAP_COUNT * 64); PH_OFFSET(FrameParams, pathFirst, 192 + MAP_COUNT * 64);
 PH_OFFSET(FrameParams, spectrum, 208 + MAP_COUNT * 64);
+PH_OFFSET(FrameParams, previousCamera, 336 + MAP_COUNT * 64);
 PH_SIZE(SppmFlux, 16); PH_OFFSET(SppmFlux, radius, 12);
 PH_SIZE(SppmPixel, 16 + MAP_COUNT * 16 + 4 * SPPM_COUNT_SLOTS); PH_OFFSET(SppmPixel, maps, 16);
 PH_OFFSET(SppmPixel, count, 16 + MAP_COUNT * 16);

@@ -27,6 +27,7 @@
 #define PHOTON_SHARED_SPPM_H
 
 #include "gather.h"
+#include "history.h"
 #include "progressive.h"
 
 PH_NAMESPACE_BEGIN
@@ -157,7 +158,7 @@ PH_FN vec3 gatherSppmMap(BUF_PARAM uint pixel, uint map, float u, bool start) {
     e.flux = vec3(0.0f);
     e.radius = 0.0f;
     e.count = 0.0f;
-    if (BUF(params).accumulated > 0u) {
+    if (historyFrames(BUF_ARG pixel) > 0u) {
         e.flux = BUF(sppmPixels)[pixel].maps[map].flux;
         e.radius = BUF(sppmPixels)[pixel].maps[map].radius;
         e.count = BUF(sppmPixels)[pixel].count[map];
@@ -175,13 +176,13 @@ PH_FN vec3 gatherSppmMap(BUF_PARAM uint pixel, uint map, float u, bool start) {
 // luminance of its caustic map's part, which the denoiser leaves as it is (denoise.h).
 PH_FN vec4 gatherSppm(BUF_PARAM uint pixel, bool start) {
     uint view = BUF(params).view;
-    uint accumulated = BUF(params).accumulated;
+    uint frames = historyFrames(BUF_ARG pixel);
     vec3 direct = rgbFromSpectral(BUF_ARG BUF(hitPoints)[pixel].direct);
-    if (accumulated == 0u) {
+    if (frames == 0u) {
         BUF(sppmPixels)[pixel] = emptySppmPixel();
     }
     vec3 mean = BUF(sppmPixels)[pixel].direct;
-    BUF(sppmPixels)[pixel].direct = mean + (direct - mean) / float(accumulated + 1u);
+    BUF(sppmPixels)[pixel].direct = mean + (direct - mean) / float(frames + 1u);
     vec3 frame = viewShowsDirect(view) ? direct : vec3(0.0f);
     float caustic = 0.0f;
     if (BUF(hitPoints)[pixel].material != NONE) {
@@ -214,7 +215,7 @@ PH_FN vec3 sppmRadiance(PH_IN(SppmPixel) state, uint frames, uint view) {
 // STAGE_ACCUMULATE for every estimator: the running mean of the frames, or under sppm (other
 // than the grid view, which shows each frame's cells) the image from the pixel's statistics.
 PH_FN vec4 accumulatePixel(BUF_PARAM uint pixel) {
-    uint n = BUF(params).accumulated;
+    uint n = historyFrames(BUF_ARG pixel);
     if (BUF(params).estimator == ESTIMATOR_SPPM && BUF(params).view != VIEW_GRID) {
         return vec4(sppmRadiance(BUF(sppmPixels)[pixel], n + 1u, BUF(params).view), 1.0f);
     }

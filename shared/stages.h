@@ -14,6 +14,8 @@
 //   tracePhotons  emit photons from the lights and follow them, appending to the two maps
 //   buildGrid     sort each map's photons by grid cell (count, exclusive scan, scatter)
 //   tracePixels   eye paths through mirrors and glass to hit points, with direct light
+//   reproject     when the camera moved (FLAG_REPROJECT), each pixel's history taken from where
+//                 its visible point was seen (reproject.h)
 //   gather        photon density estimates (and final gather) at the hit points
 //   accumulate    fold the frame into the running mean (and the auxiliary images, aov.h)
 //   denoise       filter the running mean, guided by the auxiliary images (denoise.h); only
@@ -27,9 +29,10 @@
     X(TRACE_PHOTONS, 0u, tracePhotons, "trace ph")  \
     X(BUILD_GRID, 1u, buildGrid, "grid")            \
     X(TRACE_PIXELS, 2u, tracePixels, "trace px")    \
-    X(GATHER, 3u, gather, "gather")                 \
-    X(ACCUMULATE, 4u, accumulate, "accum")          \
-    X(DENOISE, 5u, denoise, "denoise")
+    X(REPROJECT, 3u, reproject, "reproj")           \
+    X(GATHER, 4u, gather, "gather")                 \
+    X(ACCUMULATE, 5u, accumulate, "accum")          \
+    X(DENOISE, 6u, denoise, "denoise")
 
 PH_NAMESPACE_BEGIN
 

@@ -136,7 +136,7 @@ inline float largestAovDifference(const std::vector<PixelAov>& a, const std::vec
         glm::vec3 normal = glm::abs(a[i].normal - b[i].normal);
         worst = std::max({worst, albedo.x, albedo.y, albedo.z, normal.x, normal.y, normal.z,
                           std::abs(a[i].depth - b[i].depth) / std::max(a[i].depth, 1.0f),
-                          std::abs(a[i].coverage - b[i].coverage)});
+                          std::abs(a[i].coverage - b[i].coverage), std::abs(a[i].frames - b[i].frames)});
     }
     return worst;
 }

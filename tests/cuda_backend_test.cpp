@@ -11,6 +11,7 @@
 #include "apps/backends.h"
 #include "backend_compare.h"
 #include "core/loaders/scene_loader.h"
+#include "core/scene/camera_path.h"
 #include "cuda/cuda_backend.h"
 
 namespace photon {
@@ -88,6 +89,44 @@ TEST_F(CudaVsCpu, AovsAndTheDenoiserInTheParityBuild) {
     EXPECT_LE(worst, 1e-5f);
     test::expectImagesClose(cuda->image(), cpu->image(), 1e-4, "cuda-parity-denoised");
     test::expectImagesClose(cuda->rawImage(), cpu->rawImage(), 1e-4, "cuda-parity-raw");
+}
+
+// A camera moving along an orbit: the carried histories and the images, as the CPU's.
+TEST_F(CudaVsCpu, ReprojectionInTheParityBuild) {
+    Scene scene = defaultScene();
+    RenderSettings s = small();
+    s.estimator = Estimator::Sppm;
+    s.denoise = Denoise::On;
+    s.reproject = true;
+    auto cpu = createBackend("cpu");
+    BackendOptions options;
+    options.parity = true;
+    auto cuda = createBackend("cuda", options);
+    const CameraPath orbit{6.0};
+    for (Backend* b : {cpu.get(), cuda.get()}) {
+        b->setScene(scene);
+        b->setSettings(s);
+        for (int f = 0; f < 4; ++f) {
+            b->renderFrame();
+        }
+        for (int f = 1; f <= 3; ++f) {
+            b->moveCamera(cameraAt(orbit, scene.camera, f / 60.0));
+            b->renderFrame();
+        }
+    }
+    std::vector<PixelAov> a = cpu->readAovs();
+    std::vector<PixelAov> b = cuda->readAovs();
+    ASSERT_EQ(a.size(), b.size());
+    std::size_t carried = 0;
+    for (const PixelAov& p : a) {
+        carried += p.frames > 1.0f ? 1 : 0;
+    }
+    float worst = test::largestAovDifference(a, b);
+    std::printf("reprojection: %zu of %zu pixels carried; AOVs' largest difference %.3g\n", carried, a.size(), worst);
+    EXPECT_GT(carried, a.size() / 2);
+    EXPECT_LE(worst, 1e-5f);
+    test::expectImagesClose(cuda->image(), cpu->image(), 1e-4, "cuda-parity-reprojected-denoised");
+    test::expectImagesClose(cuda->rawImage(), cpu->rawImage(), 1e-4, "cuda-parity-reprojected-raw");
 }
 
 // The environment (the sky's map, and the studio environment of a model file without lights):

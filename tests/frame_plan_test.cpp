@@ -26,7 +26,7 @@ TEST(StageList, NamesAreTheReportKeys) {
     for (const StageInfo& s : kStages) {
         names.push_back(s.name);
     }
-    EXPECT_EQ(names, (std::vector<std::string>{"tracePhotons", "buildGrid", "tracePixels", "gather", "accumulate", "denoise"}));
+    EXPECT_EQ(names, (std::vector<std::string>{"tracePhotons", "buildGrid", "tracePixels", "reproject", "gather", "accumulate", "denoise"}));
 }
 
 TEST(StageList, EveryStageIsTimed) {

@@ -24,6 +24,7 @@
 #include "apps/backends.h"
 #include "backend_compare.h"
 #include "core/loaders/scene_loader.h"
+#include "core/scene/camera_path.h"
 #include "core/system/error.h"
 #include "shared/photon_map.h"
 #include "test_util.h"
@@ -246,6 +247,44 @@ TEST_F(VulkanBackendTest, AovsAndTheDenoiserAgreeWithCpu) {
     EXPECT_LE(worstMoment, lavapipe_ ? 1e-3f : 0.05f);
     EXPECT_LE(compareImages(cpu_->image(), vulkan_->image(), "denoised"), imageTolerance());
     EXPECT_LE(compareImages(cpu_->rawImage(), vulkan_->rawImage(), "raw"), imageTolerance());
+}
+
+// A camera that moves along an orbit: each pixel's carried history (its length, depth and normal)
+// is the CPU's, and so are the images.
+TEST_F(VulkanBackendTest, ReprojectionAgreesWithCpu) {
+    RenderSettings settings = smallSettings();
+    settings.estimator = Estimator::Sppm;
+    settings.denoise = Denoise::On;
+    settings.reproject = true;
+    Scene scene = featureScene();
+    render(scene, settings, 4);
+    const CameraPath orbit{6.0};
+    for (Backend* b : {cpu_, vulkan_}) {
+        for (int f = 1; f <= 3; ++f) {
+            b->moveCamera(cameraAt(orbit, scene.camera, f / 60.0));
+            b->renderFrame();
+        }
+    }
+    std::vector<PixelAov> a = cpu_->readAovs();
+    std::vector<PixelAov> b = vulkan_->readAovs();
+    ASSERT_EQ(a.size(), b.size());
+    std::size_t carried = 0;
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        carried += a[i].frames > 1.0f ? 1 : 0;
+        differing += a[i].frames != b[i].frames ? 1 : 0;
+    }
+    std::printf("reprojection: %zu of %zu pixels carried a history; %zu history lengths differ\n", carried, a.size(),
+                differing);
+    EXPECT_GT(carried, a.size() / 2);
+    if (lavapipe_) {
+        EXPECT_EQ(differing, 0u);
+        EXPECT_LE(test::largestAovDifference(a, b), 1e-5f);
+    } else {
+        EXPECT_LE(differing, a.size() / 100);
+    }
+    EXPECT_LE(compareImages(cpu_->rawImage(), vulkan_->rawImage(), "reprojected raw"), imageTolerance());
+    EXPECT_LE(compareImages(cpu_->image(), vulkan_->image(), "reprojected denoised"), imageTolerance());
 }
 
 TEST_F(VulkanBackendTest, FinalGatherAgreesWithCpu) {

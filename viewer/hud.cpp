@@ -116,6 +116,7 @@ void renderSection(ViewState& state, const HudInfo& info) {
     changed |= ImGui::Checkbox("pixel centres (no jitter)", &s.pixelCenter);
     changed |= ImGui::Checkbox("spectral (dispersion)", &s.spectral);
     changed |= enumCombo("denoise", s.denoise);
+    changed |= ImGui::Checkbox("keep the history when the camera moves", &s.reproject);
     state.settingsChanged |= changed;
 
     ImGui::SliderFloat("exposure", &state.exposure, -8.0f, 8.0f, "%.1f stops");

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/loaders/model_loader.h"
+#include "core/scene/camera_path.h"
 #include "core/scene/scene.h"
 #include "core/settings/settings.h"
 
@@ -26,6 +27,9 @@ constexpr std::uint32_t enumCount<viewer::DisplayView>() { return viewer::kDispl
 
 namespace photon::viewer {
 
+// A scripted run's frames are this far apart on a camera path, whatever they cost (repeatable).
+constexpr double kScriptedFrameSeconds = 1.0 / 60.0;
+
 struct ViewerOptions {
     std::string scenePath;           // empty: the built-in Cornell box
     Scene scene;                     // loaded from scenePath (or the built-in one)
@@ -43,6 +47,8 @@ struct ViewerOptions {
     std::uint32_t resizeWidth = 0;
     std::uint32_t resizeHeight = 0;
     std::string statsPath;           // write frame-time medians as JSON here at exit
+    bool followPath = false;         // the camera follows cameraPath from the scene's camera:
+    CameraPath cameraPath;           // by the clock, or kScriptedFrameSeconds a frame with --frames
     PathPolicy paths;                // where the files a model names may lie (reloads too)
 };
 

@@ -136,6 +136,7 @@ void Viewer::run() {
         // Then the previous frame is done with, and only now may anything change.
         finishFrame();
         animateLight(seconds);
+        followCameraPath(seconds);
         applyChanges();
         drawFrame();
     }

@@ -69,6 +69,7 @@ private:
     void report(const std::string& message);
     void watchSceneFile();
     void animateLight(float seconds);
+    void followCameraPath(float seconds);
 
     // viewer_input.cpp
     void handleInput(float seconds);
@@ -110,6 +111,7 @@ private:
     std::chrono::steady_clock::time_point lastWatch_{};
     glm::vec3 lightCircleCentre_{0.0f};    // where the circling light started
     float lightCircleAngle_ = -1.0f;      // negative: not circling
+    double pathSeconds_ = 0.0;             // how far along --camera-path the camera is
     bool swapchainStale_ = false;          // recreate before the next frame
     bool resizedByScript_ = false;         // --resize-after has happened
     bool started_ = false;                 // the first settings were accepted

@@ -66,8 +66,10 @@ void Viewer::applyChanges() {
         sceneSet = true;
     }
     applySettings();
-    if (sceneSet || !sameCamera(camera_.camera(), backend_->camera())) {
+    if (sceneSet) {
         backend_->setCamera(camera_.camera());
+    } else if (!sameCamera(camera_.camera(), backend_->camera())) {
+        backend_->moveCamera(camera_.camera());  // the history follows it (--reproject)
     }
 }
 
@@ -151,6 +153,7 @@ void Viewer::installScene(const Scene& scene, const std::string& path, bool keep
         camera_ = CameraController(scene.camera, scene.diagonal());
         state_.settings = scene.render;
         chooseDefaults(state_.settings, true);
+        chooseInteractive(state_.settings);
         chooseSpectral(state_.settings, scene);
         choosePhotons(state_.settings, backend_->runsOnCpu());
         state_.exposure = scene.render.exposure;
@@ -183,6 +186,18 @@ void Viewer::watchSceneFile() {
     if (!error && time != sceneTime_) {
         loadScene(scenePath_, true);
     }
+}
+
+// --camera-path: the camera where the path is now, from the loaded scene's camera. The backend
+// sees a moved camera (applyChanges), so the history follows it under --reproject.
+void Viewer::followCameraPath(float seconds) {
+    if (!options_.followPath) {
+        return;
+    }
+    if (framesDrawn_ > 0) {
+        pathSeconds_ += options_.frames > 0 ? kScriptedFrameSeconds : double(seconds);
+    }
+    camera_.setCamera(cameraAt(options_.cameraPath, lights_.loaded().camera, pathSeconds_));
 }
 
 // The circling light: the selected light goes round a circle of a tenth of the scene's diagonal

@@ -17,6 +17,7 @@ namespace photon::vk {
 namespace spirv {
 #include "accumulate.spv.h"
 #include "denoise.spv.h"
+#include "reproject.spv.h"
 #include "gather.spv.h"
 #include "gridArgs.spv.h"
 #include "gridCount.spv.h"
@@ -43,7 +44,7 @@ ShaderCode code(const std::uint32_t (&words)[N]) {
 }
 
 constexpr const char* kShaderNames[kShaderCount] = {"tracePhotons", "gridArgs", "gridCount", "gridScan", "gridScanAdd",
-                                                   "gridScatter", "gridScatterIds", "gridRank", "gridMerge", "tracePixels", "gather", "accumulate", "denoise"};
+                                                   "gridScatter", "gridScatterIds", "gridRank", "gridMerge", "tracePixels", "reproject", "gather", "accumulate", "denoise"};
 
 ShaderCode shaderCode(Shader shader) {
     switch (shader) {
@@ -57,6 +58,7 @@ ShaderCode shaderCode(Shader shader) {
         case kGridRank: return code(spirv::gridRank);
         case kGridMerge: return code(spirv::gridMerge);
         case kTracePixels: return code(spirv::tracePixels);
+        case kReproject: return code(spirv::reproject);
         case kGather: return code(spirv::gather);
         case kAccumulate: return code(spirv::accumulate);
         case kDenoise: return code(spirv::denoise);

@@ -23,6 +23,7 @@ enum Shader : std::uint32_t {
     kGridRank,        //   each ranked within its chunk of the cell,
     kGridMerge,       //   and the chunks of the larger cells merged
     kTracePixels,   // STAGE_TRACE_PIXELS
+    kReproject,     // STAGE_REPROJECT, a pass at a time
     kGather,        // STAGE_GATHER
     kAccumulate,    // STAGE_ACCUMULATE
     kDenoise,       // STAGE_DENOISE, a pass at a time

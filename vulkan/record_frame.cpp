@@ -80,6 +80,33 @@ void VulkanBackend::tracePixels(VkCommandBuffer cmd, const FrameParams& params) 
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
 }
 
+// The passes in order, the restore pass reading what save wrote of other pixels.
+void VulkanBackend::reproject(VkCommandBuffer cmd, const FrameParams& params) {
+    if ((params.flags & FLAG_REPROJECT) == 0u) {
+        return;
+    }
+    dispatchPasses(cmd, kReproject, REPROJECT_PASS_COUNT, params);
+    // The carried histories are written before gather and accumulate read them.
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+}
+
+// Passes of one shader over the pixels, in order, each after the one before has written (the
+// pass number as push constant).
+void VulkanBackend::dispatchPasses(VkCommandBuffer cmd, Shader shader, std::uint32_t passes, const FrameParams& params) {
+    for (std::uint32_t pass = 0; pass < passes; ++pass) {
+        if (pass > 0) {
+            memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+        }
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_.pipeline[shader]);
+        vkCmdPushConstants(cmd, pipelines_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pass), &pass);
+        std::uint32_t tilesX = (params.width + PIXEL_TILE_X - 1) / PIXEL_TILE_X;
+        std::uint32_t tilesY = (params.height + PIXEL_TILE_Y - 1) / PIXEL_TILE_Y;
+        vkCmdDispatch(cmd, tilesX, tilesY, 1);
+    }
+}
+
 // With the pipeline of the frame's estimator and mode.
 void VulkanBackend::gather(VkCommandBuffer cmd, const FrameParams& params) {
     dispatchPixels(cmd, pipelines_.gather(params.estimator, params.globalMode,
@@ -104,17 +131,7 @@ void VulkanBackend::denoise(VkCommandBuffer cmd, const FrameParams& params) {
     if ((params.flags & FLAG_DENOISE) == 0u) {
         return;
     }
-    for (std::uint32_t pass = 0; pass < DENOISE_PASS_COUNT; ++pass) {
-        if (pass > 0) {
-            memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
-        }
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_.pipeline[kDenoise]);
-        vkCmdPushConstants(cmd, pipelines_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pass), &pass);
-        std::uint32_t tilesX = (params.width + PIXEL_TILE_X - 1) / PIXEL_TILE_X;
-        std::uint32_t tilesY = (params.height + PIXEL_TILE_Y - 1) / PIXEL_TILE_Y;
-        vkCmdDispatch(cmd, tilesX, tilesY, 1);
-    }
+    dispatchPasses(cmd, kDenoise, DENOISE_PASS_COUNT, params);
 }
 
 // A counting sort of each map's photons by cell. The count and scatter passes run over the photons

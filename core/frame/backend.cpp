@@ -55,6 +55,18 @@ void Backend::setCamera(const CameraDesc& camera) {
     footprintsDirty_ = true;
 }
 
+void Backend::moveCamera(const CameraDesc& camera) {
+    if (!settings_.reproject || accumulated_ == 0) {
+        setCamera(camera);
+        return;
+    }
+    if (!reprojecting_) {
+        previousCamera_ = camera_;
+        reprojecting_ = true;
+    }
+    camera_ = camera;
+}
+
 void Backend::resetAccumulation() { accumulated_ = 0; }
 
 void Backend::setPathSplit(const PathSplit& split) {
@@ -123,7 +135,9 @@ FrameResult Backend::runFrame(const FrameParams& params, bool denoiseOnly) {
     beginStages(params);
     for (const StageInfo& stage : kStages) {
         bool denoise = stage.id == STAGE_DENOISE;
-        if (denoiseOnly ? denoise : !denoise || (params.flags & FLAG_DENOISE) != 0u) {
+        bool optional = denoise || stage.id == STAGE_REPROJECT;
+        std::uint32_t flag = denoise ? FLAG_DENOISE : FLAG_REPROJECT;
+        if (denoiseOnly ? denoise : !optional || (params.flags & flag) != 0u) {
             runStage(stage.id, params);
         } else {
             skipStage(stage.id);
@@ -157,8 +171,15 @@ void Backend::measureRadii() {
 const FrameParams& Backend::beginFrame() {
     prepare();
     measureRadii();
+    if (accumulated_ == 0) {
+        reprojecting_ = false;  // restarted since the camera moved: nothing to carry
+    }
     params_ = makeFrameParams(scene_, camera_, settings_, budget_, frameIndex_, accumulated_,
                               policy_.frame(settings_, accumulated_), split_);
+    if (reprojecting_) {
+        params_.flags |= FLAG_REPROJECT;
+        params_.previousCamera = makeCamera(previousCamera_, settings_.width, settings_.height);
+    }
     if (!denoiseEachFrame_) {
         params_.flags &= ~FLAG_DENOISE;
     }
@@ -187,6 +208,7 @@ bool Backend::endFrame(const FrameResult& result, bool mayRepeat) {
     policy_.observe(settings_, result.counters);
     frameIndex_ += 1;
     accumulated_ += 1;
+    reprojecting_ = false;
     denoisedFrames_ = (params_.flags & FLAG_DENOISE) != 0u ? accumulated_ : 0u;
     return true;
 }

@@ -113,6 +113,10 @@ public:
     void setScene(Scene scene);  // moved in: a large scene is not copied again
     void setSettings(const RenderSettings& settings);
     void setCamera(const CameraDesc& camera);
+    // The camera moved: under settings().reproject the next frame carries each pixel's history to
+    // where its surface is now seen (shared/reproject.h) and nothing restarts; otherwise as
+    // setCamera(). Several moves before a frame reproject from the last frame's camera.
+    void moveCamera(const CameraDesc& camera);
     void resetAccumulation();
     // This renderer's share of each frame's photon paths (multi-GPU rendering; default: all).
     void setPathSplit(const PathSplit& split);
@@ -223,6 +227,8 @@ private:
     std::uint32_t grownCapacity_[MAP_COUNT] = {};  // capacities raised by growPhotonMaps()
     bool warnedDropped_ = false;
     bool denoiseEachFrame_ = false;
+    bool reprojecting_ = false;     // the camera moved since the last frame, which reprojects
+    CameraDesc previousCamera_;     // ... from this, the last frame's
     std::uint32_t denoisedFrames_ = 0;  // accumulated_ when the denoise stage last ran (0: never)
 };
 

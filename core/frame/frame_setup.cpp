@@ -31,6 +31,7 @@ PhotonBudget planPhotons(const Scene& scene, const RenderSettings& settings) {
     b.deterministic = settings.deterministic;
     b.aovs = keepsAovs(settings);
     b.denoise = denoises(settings);
+    b.history = settings.reproject;
     // A global path stores at most one photon per bounce; Russian roulette makes the mean small.
     // A caustic path stores at most one photon: at its first non-specular surface.
     double perPath = std::min<double>(settings.photonCapacity, settings.maxPhotonDepth);

@@ -28,6 +28,7 @@ struct PhotonBudget {
     bool deterministic = false;               // each cell's photons in canonical order (photon_map.h)
     bool aovs = false;                        // the auxiliary images are kept (shared/aov.h)
     bool denoise = false;                     // the denoiser runs (shared/denoise.h)
+    bool history = false;                     // the history follows the camera (shared/reproject.h)
 
     // The maps lie one after another, in map order, in the photon arrays and in cellStart
     // (each map's cells and an end entry).

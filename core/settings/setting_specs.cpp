@@ -99,6 +99,10 @@ std::vector<SettingSpec> makeSpecs() {
                &R::denoise),
         flag("aov", "--aov", "Keep the albedo, normal, depth and variance images; .exr files get them as layers",
              &R::aov),
+        flag("reproject", "--reproject",
+             "When the camera moves, each pixel keeps the history of where its surface was seen (photon-view, "
+             "--camera-path); on in photon-view unless given",
+             &R::reproject),
     };
 }
 
@@ -271,6 +275,12 @@ void chooseDefaults(RenderSettings& settings, bool timed) {
     }
     if (!isGiven(settings, "denoise")) {
         settings.denoise = Denoise::On;
+    }
+}
+
+void chooseInteractive(RenderSettings& settings) {
+    if (!isGiven(settings, "reproject")) {
+        settings.reproject = true;
     }
 }
 

@@ -71,6 +71,8 @@ bool isGiven(const RenderSettings& settings, const std::string& key);
 // What is left to choose once a render's length is known: sppm for a render of more than one frame
 // (or of a time), unless an estimator was given.
 void chooseDefaults(RenderSettings& settings, bool timed);
+// What a program whose camera moves gets unless told: the history follows the camera (reproject).
+void chooseInteractive(RenderSettings& settings);
 
 // Photon paths a frame when neither the file nor the command line gives them, for the backend that
 // renders: on a GPU kGpuDefaultPhotons; on the host's cores, where a frame's eye pass and gather

@@ -73,6 +73,8 @@ struct RenderSettings {
     Denoise denoise = Denoise::Off;       // filter the image (shared/denoise.h); photon-render and the viewer
                                           // turn it on unless told (chooseDefaults)
     bool aov = false;                     // keep the auxiliary images (albedo, normal, depth, variance)
+    bool reproject = false;               // a moving camera carries the image's history (shared/reproject.h);
+                                          // the viewer turns it on unless told (chooseInteractive)
     float exposure = 0.0f;                // stops
     Tonemap tonemap = Tonemap::Aces;
     std::uint64_t given = 0;              // bit i: settingSpecs()[i] was set by a file or a flag
@@ -87,7 +89,8 @@ inline bool isSpectral(const RenderSettings& settings) { return settings.spectra
 // Whether the denoiser runs (never on the grid view, a heat map), and whether the accumulate stage
 // keeps the auxiliary images (for it, or for --aov).
 inline bool denoises(const RenderSettings& settings) { return settings.denoise == Denoise::On && settings.view != View::Grid; }
-inline bool keepsAovs(const RenderSettings& settings) { return settings.aov || denoises(settings); }
+// Reprojection needs them too: their depths and normals tell whether a pixel still sees its surface.
+inline bool keepsAovs(const RenderSettings& settings) { return settings.aov || denoises(settings) || settings.reproject; }
 const char* mapRadiusFlag(std::uint32_t map);
 
 const char* toString(Estimator e);
