@@ -29,7 +29,9 @@ double brightest(const Image& image) {
 struct Run {
     std::vector<Image> raw, denoised;
     double brightest = 0.0;
-    double frameMs = 0.0;  // median stage time of a frame
+    double frameMs = 0.0;      // median stage time of a frame
+    double reprojectMs = 0.0;  // ... and of its reproject stage
+    double denoiseMs = 0.0;    // ... and of its denoise stage
 };
 
 Run moveAlong(Backend& backend, const Scene& scene, const RenderSettings& settings, const OrbitMeasurement& m,
@@ -38,7 +40,7 @@ Run moveAlong(Backend& backend, const Scene& scene, const RenderSettings& settin
     backend.setScene(scene);
     backend.setSettings(settings);
     Run run;
-    std::vector<double> ms;
+    std::vector<double> ms, reproject, denoise;
     std::size_t next = 0;
     for (std::uint32_t f = 0; f < m.frames; ++f) {
         CameraDesc camera = cameraAt(m.path, scene.camera, f * kFrameSeconds);
@@ -49,6 +51,8 @@ Run moveAlong(Backend& backend, const Scene& scene, const RenderSettings& settin
         }
         backend.renderFrame();
         ms.push_back(backend.lastFrameStats().ms.total());
+        reproject.push_back(backend.lastFrameStats().ms[STAGE_REPROJECT]);
+        denoise.push_back(backend.lastFrameStats().ms[STAGE_DENOISE]);
         Image shown = backend.image();
         run.brightest = std::max(run.brightest, brightest(shown));
         if (next < samples.size() && samples[next] == f) {
@@ -58,6 +62,8 @@ Run moveAlong(Backend& backend, const Scene& scene, const RenderSettings& settin
         }
     }
     run.frameMs = median(ms);
+    run.reprojectMs = median(reproject);
+    run.denoiseMs = median(denoise);
     return run;
 }
 
@@ -114,6 +120,13 @@ nlohmann::json measureOrbit(const std::function<std::unique_ptr<Backend>()>& mak
     for (std::size_t i = 0; i < samples.size(); ++i) {
         QualityMasks masks(references[i]);
         const Image* images[4] = {&before.raw[i], &before.denoised[i], &after.raw[i], &after.denoised[i]};
+        if (!m.imagesDir.empty()) {
+            std::string frame = std::to_string(samples[i] + 1);
+            writeImage(m.imagesDir + "/reference-" + frame + ".pfm", references[i], 0.0f, Tonemap::Clamp);
+            for (int k = 0; k < 4; ++k) {
+                writeImage(m.imagesDir + "/" + names[k] + "-" + frame + ".pfm", *images[k], 0.0f, Tonemap::Clamp);
+            }
+        }
         nlohmann::json row = {{"frame", samples[i] + 1}};
         std::printf("%6u ", samples[i] + 1);
         for (int k = 0; k < 4; ++k) {
@@ -134,13 +147,15 @@ nlohmann::json measureOrbit(const std::function<std::unique_ptr<Backend>()>& mak
         std::printf(" %8.2f%% %8.2f%% %7.4f ", 100.0 * median(whole[k]), 100.0 * median(away[k]), median(ssim[k]));
     }
     std::printf("\nbrightest pixel shown / the references' brightest: restart %.2f, reproject %.2f; frame ms: restart "
-                "%.3f, reproject %.3f\n",
-                before.brightest / referencePeak, after.brightest / referencePeak, before.frameMs, after.frameMs);
+                "%.3f, reproject %.3f (its reproject stage %.3f, denoise %.3f)\n",
+                before.brightest / referencePeak, after.brightest / referencePeak, before.frameMs, after.frameMs,
+                after.reprojectMs, after.denoiseMs);
     std::fflush(stdout);
     return {{"orbit_seconds", m.path.seconds}, {"frames", m.frames}, {"reference_frames", m.referenceFrames},
             {"samples", rows}, {"median", medians},
             {"brightest_ratio", {{"restart", before.brightest / referencePeak}, {"reproject", after.brightest / referencePeak}}},
-            {"frame_ms", {{"restart", before.frameMs}, {"reproject", after.frameMs}}}};
+            {"frame_ms", {{"restart", before.frameMs}, {"reproject", after.frameMs}}},
+            {"reproject_stage_ms", after.reprojectMs}, {"denoise_stage_ms", after.denoiseMs}};
 }
 
 }  // namespace photon

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <string>
 
 #include <nlohmann/json.hpp>
 
@@ -21,6 +22,7 @@ struct OrbitMeasurement {
     std::uint32_t frames = 120;           // frames along the path
     std::uint32_t samples = 8;            // frames compared with a reference, evenly spread
     std::uint32_t referenceFrames = 256;  // frames of each reference (its own backend, still camera)
+    std::string imagesDir;                // if set: each sample's images as PFM there
 };
 
 // Renders on backends from `makeBackend`, prints a row per sample frame and the medians, and

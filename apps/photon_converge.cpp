@@ -149,6 +149,7 @@ int run(int argc, char** argv) {
     }
     if (!cameraPath.empty()) {
         orbit.path = parseCameraPath(cameraPath, "--camera-path");
+        orbit.imagesDir = imagesDir;
         if (!referencePath.empty() || !comparePath.empty() || scenePath.empty()) {
             throw InputError("--camera-path: give a scene and no --reference or --compare (it renders its own references)");
         }

@@ -165,7 +165,6 @@ PH_CONST uint FLAG_REPROJECT = 64u;      // the camera moved: the reproject stag
 // the surface's (45°: a pixel across a right-angled corner, whose frames saw both sides, still
 // passes); a carried history counts at most REPROJECT_MAX_FRAMES frames.
 PH_CONST float REPROJECT_DEPTH_TOLERANCE = 0.05f;
-PH_CONST float REPROJECT_SPECULAR_DEPTH_TOLERANCE = 0.25f;  // ... for a path through mirrors or glass
 PH_CONST float REPROJECT_NORMAL_COS = 0.7f;
 PH_CONST uint REPROJECT_MAX_FRAMES = 32u;
 // Below this sum of bilinear weights of the pixels that saw the same surface, a pixel starts again.

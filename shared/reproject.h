@@ -7,14 +7,14 @@
 //            pixels run in;
 //   restore  where the pixel's surface appears now ("motion from depth": its depth along the ray
 //            through the pixel's centre) projected into the previous camera, and the histories of
-//            the four pixels about that point that saw the same surface, bilinearly weighted:
-//            each one's mean depth within REPROJECT_DEPTH_TOLERANCE of the point's distance from
+//            the pixels about that point that saw the same surface, interpolated (Catmull-Rom,
+//            or bilinearly by an edge): each one's mean depth within REPROJECT_DEPTH_TOLERANCE of the point's distance from
 //            the previous camera and its mean normal's direction within acos(REPROJECT_NORMAL_COS)
 //            of the point's. Where none did (the surface came into view, or another surface was
 //            there) the pixel starts again (history.h: zero frames).
 // The depth is the path's length through mirrors and glass (aov.h), so what a mirror shows moves
 // as its virtual image does. Each carried history counts at most REPROJECT_MAX_FRAMES frames, so
-// that the blur each move's interpolation adds gives way to new frames.
+// that what each move's interpolation smears gives way to new frames.
 #ifndef PHOTON_SHARED_REPROJECT_H
 #define PHOTON_SHARED_REPROJECT_H
 
@@ -70,19 +70,27 @@ PH_FN bool sawSameSurface(PH_IN(PixelAov) before, vec4 point, float expected, ve
     if (!(before.coverage > 0.0f)) {
         return false;
     }
-    float tolerance = specular ? REPROJECT_SPECULAR_DEPTH_TOLERANCE : REPROJECT_DEPTH_TOLERANCE;
-    bool sameDepth = abs(before.depth - expected) <= tolerance * expected;
+    bool sameDepth = specular || abs(before.depth - expected) <= REPROJECT_DEPTH_TOLERANCE * expected;
     bool sameNormal = specular || dot(before.normal, n) >= REPROJECT_NORMAL_COS * length(before.normal);
     return sameDepth && sameNormal;
 }
 
-// Pass restore of one pixel: the histories of the four pixels of the frame before whose centres
-// surround where its surface appeared then, each that saw the same surface weighted bilinearly
-// (SVGF's rule). Means are interpolated as they are; sppm's statistics as the radiance they give,
-// τ / (k π R²), with R and N, from which τ is made again for the carried frame count k: a photon
-// mapper's radius, count and flux do not interpolate, but the estimate they hold does. (The
-// nearest pixel alone would copy some histories twice and lose others wherever the image
-// stretches, and after a few moves the image would be blotches of a few ancestors.)
+// Catmull-Rom's weights of the four taps at -1, 0, 1, 2 about a point t ∈ [0, 1) past tap 0.
+PH_FN vec4 catmullRomWeights(float t) {
+    float t2 = t * t;
+    float t3 = t2 * t;
+    return 0.5f * vec4(-t + 2.0f * t2 - t3, 2.0f - 5.0f * t2 + 3.0f * t3, t + 4.0f * t2 - 3.0f * t3, t3 - t2);
+}
+
+// Pass restore of one pixel: the histories of the pixels of the frame before about where its
+// surface appeared then, interpolated. Where all 4 × 4 about that point saw the same surface,
+// by Catmull-Rom (as temporal antialiasing resamples its history: a moving camera resamples every
+// frame, and bilinear weights would blur the image by a little more each time, until after a few
+// dozen moves its edges, shadows and caustics were smeared); elsewhere (edges, where some saw
+// another surface) bilinearly from the 2 × 2 that did (SVGF's rule). Means are interpolated as
+// they are; sppm's statistics as the radiance they give, τ / (k π R²), with R and N, from which τ
+// is made again for the carried frame count k: a photon mapper's radius, count and flux do not
+// interpolate, but the estimate they hold does.
 PH_FN void reprojectRestore(BUF_PARAM uint pixel) {
     HitPoint hp = BUF(hitPoints)[pixel];
     vec4 point = apparentPoint(BUF_ARG pixel, hp);
@@ -94,7 +102,9 @@ PH_FN void reprojectRestore(BUF_PARAM uint pixel) {
     float expected = length(p - previous.position);
     // A path through mirrors or glass is longer than the way to where it ended. Through a curved
     // surface its length and the surface it meets change from frame to frame with where in the
-    // pixel the ray went: its depth is held to a looser tolerance, and its normal not at all.
+    // pixel the ray went, so neither its depth nor its normal tells whether the history is its
+    // own: any history that saw a surface is taken (measured: held to a 25% depth tolerance, the
+    // glass ball's pixels started again so often that the image there was one frame's).
     bool specular = point.w != 0.0f && hp.pathLength > 1.001f * length(hp.position - BUF(params).camera.position);
     vec3 n = octDecode(hp.aovNormal);
     bool sppm = BUF(params).estimator == ESTIMATOR_SPPM;
@@ -105,6 +115,15 @@ PH_FN void reprojectRestore(BUF_PARAM uint pixel) {
     float y0 = floor(fy);
     float tx = fx - x0;
     float ty = fy - y0;
+    bool everyTap = q.z > 0.0f;
+    for (uint t = 0u; t < 16u && everyTap; ++t) {
+        float x = x0 - 1.0f + float(t & 3u);
+        float y = y0 - 1.0f + float(t >> 2u);
+        everyTap = x >= 0.0f && y >= 0.0f && x < float(width) && y < float(height) &&
+                   sawSameSurface(BUF(history)[uint(y) * width + uint(x)].aov, point, expected, n, specular);
+    }
+    vec4 wx = catmullRomWeights(tx);
+    vec4 wy = catmullRomWeights(ty);
     float weights = 0.0f;
     float frames = 0.0f;
     PixelAov a = emptyPixelAov();
@@ -118,16 +137,23 @@ PH_FN void reprojectRestore(BUF_PARAM uint pixel) {
         radius[m] = 0.0f;
         count[m] = 0.0f;
     }
-    for (uint t = 0u; t < 4u; ++t) {
-        float x = x0 + float(t & 1u);
-        float y = y0 + float(t >> 1u);
-        float w = ((t & 1u) != 0u ? tx : 1.0f - tx) * ((t >> 1u) != 0u ? ty : 1.0f - ty);
-        if (!(q.z > 0.0f && w > 0.0f && x >= 0.0f && y >= 0.0f && x < float(width) && y < float(height))) {
+    for (uint t = 0u; t < 16u; ++t) {
+        uint i = t & 3u;
+        uint j = t >> 2u;
+        float x = x0 - 1.0f + float(i);
+        float y = y0 - 1.0f + float(j);
+        float w = wx[i] * wy[j];
+        if (!everyTap) {
+            bool inner = i == 1u || i == 2u;
+            inner = inner && (j == 1u || j == 2u);
+            w = inner ? (i == 2u ? tx : 1.0f - tx) * (j == 2u ? ty : 1.0f - ty) : 0.0f;
+        }
+        if (!(q.z > 0.0f && w != 0.0f && x >= 0.0f && y >= 0.0f && x < float(width) && y < float(height))) {
             continue;  // behind or beside the previous view
         }
         uint s = uint(y) * width + uint(x);
         PixelAov b = BUF(history)[s].aov;
-        if (!sawSameSurface(b, point, expected, n, specular)) {
+        if (!everyTap && !sawSameSurface(b, point, expected, n, specular)) {
             continue;
         }
         weights += w;
@@ -157,22 +183,23 @@ PH_FN void reprojectRestore(BUF_PARAM uint pixel) {
     }
     float inverse = 1.0f / weights;
     float k = clamp(floor(frames * inverse + 0.5f), 1.0f, float(REPROJECT_MAX_FRAMES));
+    // Catmull-Rom's negative lobes can overshoot below zero beside an edge of light.
     if (sppm) {
-        BUF(sppmPixels)[pixel].direct = direct * inverse;
+        BUF(sppmPixels)[pixel].direct = max(direct * inverse, vec3(0.0f));
         for (uint m = 0u; m < MAP_COUNT; ++m) {
-            float r = radius[m] * inverse;
-            BUF(sppmPixels)[pixel].maps[m].flux = radiance[m] * inverse * (k * PI * r * r);
+            float r = max(radius[m] * inverse, 0.0f);
+            BUF(sppmPixels)[pixel].maps[m].flux = max(radiance[m] * inverse, vec3(0.0f)) * (k * PI * r * r);
             BUF(sppmPixels)[pixel].maps[m].radius = r;
-            BUF(sppmPixels)[pixel].count[m] = count[m] * inverse;
+            BUF(sppmPixels)[pixel].count[m] = max(count[m] * inverse, 0.0f);
         }
     }
-    BUF(accumulation)[pixel] = mean * inverse;
-    a.albedo *= inverse;
+    BUF(accumulation)[pixel] = max(mean * inverse, vec4(0.0f));
+    a.albedo = max(a.albedo * inverse, vec3(0.0f));
     a.normal *= inverse;
-    a.coverage *= inverse;
-    a.luminance *= inverse;
-    a.luminance2 *= inverse;
-    a.background *= inverse;
+    a.coverage = clamp(a.coverage * inverse, 0.0f, 1.0f);
+    a.luminance = max(a.luminance * inverse, 0.0f);
+    a.luminance2 = max(a.luminance2 * inverse, a.luminance * a.luminance);
+    a.background = max(a.background * inverse, vec3(0.0f));
     a.depth *= inverse;
     // The mean depth from where the camera is now: moved by as much as the surface's distance.
     if (point.w != 0.0f) {
