@@ -163,10 +163,13 @@ PH_CONST uint FLAG_REPROJECT = 64u;      // the camera moved: the reproject stag
 // in the frame before if that one's mean depth is within this share of the surface's distance
 // from the previous camera and its mean normal's direction within acos(REPROJECT_NORMAL_COS) of
 // the surface's (45°: a pixel across a right-angled corner, whose frames saw both sides, still
-// passes); a carried history counts at most REPROJECT_MAX_FRAMES frames.
+// passes); a carried history counts at most REPROJECT_MAX_FRAMES frames: each move's interpolation
+// smears the image a little, and a longer history keeps the smear longer (measured on an orbit of
+// the Cornell box and the caustic scene, docs/denoising.md: 4, 8, 16 and 32 frames; 8 is the best
+// trade of noise against blur away from the focus).
 PH_CONST float REPROJECT_DEPTH_TOLERANCE = 0.05f;
 PH_CONST float REPROJECT_NORMAL_COS = 0.7f;
-PH_CONST uint REPROJECT_MAX_FRAMES = 32u;
+PH_CONST uint REPROJECT_MAX_FRAMES = 8u;
 // Below this sum of bilinear weights of the pixels that saw the same surface, a pixel starts again.
 PH_CONST float REPROJECT_MIN_WEIGHT = 0.01f;
 // Its passes: every pixel's history set aside, then each pixel's taken from where its point was.
