@@ -139,5 +139,21 @@ if ! command -v nvidia-smi >/dev/null 2>&1; then
   expect 1 "CUDA" --backend cuda --width 8 --height 8 -o "$tmp/x.png"
 fi
 
+# photon-converge --camera-path: the error of a moving view; a path it does not know is refused.
+converge="$(dirname "$render")/photon-converge"
+"$converge" "$scenes/cornell.json" --backend cpu --camera-path orbit:2 --path-frames 4 --samples 2 \
+  --reference-frames 2 --set width=32 --set height=24 --set photons=2000 --json "$tmp/orbit.json" >"$tmp/out" 2>"$tmp/err"
+if [ $? -ne 0 ] || ! grep -q '"reproject_denoised"' "$tmp/orbit.json"; then
+  echo "FAIL: photon-converge --camera-path"; cat "$tmp/err"; failures=$((failures + 1))
+else
+  echo "ok: photon-converge --camera-path orbit:2"
+fi
+"$converge" "$scenes/cornell.json" --camera-path spin:3 >"$tmp/out" 2>"$tmp/err"
+if [ $? -ne 2 ] || ! grep -qF -- "--camera-path: 'spin:3' is not orbit:SECONDS" "$tmp/err"; then
+  echo "FAIL: photon-converge --camera-path spin:3"; cat "$tmp/err"; failures=$((failures + 1))
+else
+  echo "ok: exit 2: photon-converge --camera-path spin:3"
+fi
+
 [ "$failures" -eq 0 ] && echo "all CLI checks passed"
 exit "$failures"

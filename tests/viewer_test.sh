@@ -82,6 +82,14 @@ if [ "$(stat -c %s "$out/dots.png" 2>/dev/null || echo 0)" -lt 4000 ]; then
   echo "FAIL: the photon-dots screenshot is (nearly) empty"; failures=$((failures + 1))
 fi
 
+# --camera-path: the camera circles, the history following it (1/60 s a frame in a scripted run).
+run orbit 0 "$view" "${common[@]}" --offscreen --width 160 --height 120 --frames 6 --camera-path orbit:2 \
+  --screenshot "$out/orbit.png"
+if cmp -s "$out/orbit.png" "$out/offscreen.png"; then
+  echo "FAIL: the orbit's last frame is the still camera's"; failures=$((failures + 1))
+fi
+run bad-path 2 "$view" --offscreen --frames 1 --camera-path orbit:0
+
 run no-frames 2 "$view" --offscreen
 run bad-view 2 "$view" --offscreen --frames 1 --view nearest
 run bad-scene 2 "$view" "$out/missing.json" --offscreen --frames 1
