@@ -64,19 +64,6 @@ struct Row {
     double primaryRaysPerSecond = 0.0;  // --primary-rays, CUDA
 };
 
-std::pair<std::uint32_t, std::uint32_t> parseResolution(const std::string& s) {
-    unsigned w = 0;
-    unsigned h = 0;
-    char x = 0;
-    std::istringstream in(s);
-    // Nothing may follow the height: "64x48x2" is not a resolution.
-    if (!(in >> w >> x >> h) || x != 'x' || in.peek() != std::char_traits<char>::eof() || w == 0 || h == 0 ||
-        w > 16384 || h > 16384) {
-        throw InputError("--resolutions: " + quote(s) + " is not WIDTHxHEIGHT");
-    }
-    return {w, h};
-}
-
 // "cornell" (built in), "mesh:N" and "mesh-glass:N" (tools/bench_scenes.h: N triangles), a
 // path with an extension (a scene or model file), or a name in the scenes folder.
 Scene sceneNamed(const std::string& name, const std::string& scenesDir) {
@@ -370,7 +357,7 @@ int run(int argc, char** argv) {
     BackendOptions options;
     app.add_option("--backends", backends, "Comma-separated: cpu,cuda,vulkan");
     app.add_option("--scenes", scenes, "Comma-separated scene names (files in --scenes-dir; cornell is built in)");
-    app.add_option("--scenes-dir", scenesDir, "Where scene files are");
+    app.add_option("--scenes-dir", scenesDir, "Where scene files are")->check(kFileName);
     app.add_option("--resolutions", resolutions, "Comma-separated WIDTHxHEIGHT");
     app.add_option("--photons", photons, "Comma-separated photon paths per frame");
     app.add_option("--estimator", estimator, "Radiance estimate: " + choices(Estimator{}) + " (default: a render's, sppm unless the scene says)");
@@ -380,22 +367,22 @@ int run(int argc, char** argv) {
     app.add_option("--vary", vary, "KEY=V1,V2,...: also measure each value of a scene-file render setting "
                                    "(cell_size, gather_budget, radius, caustic_radius, caustic_fraction, estimator, ...)");
     app.add_option("--grid-sweep", gridSweep, "Comma-separated photon counts: grid build rate at 320x240");
-    app.add_flag("--launch-sweep", launchSweep, "CUDA: sweep block shapes of every stage");
-    app.add_flag("--primary-rays", primaryRays, "CUDA: also time primary rays alone (nearest hit, no shading) per case");
+    addSwitch(app, "--launch-sweep", launchSweep, "CUDA: sweep block shapes of every stage");
+    addSwitch(app, "--primary-rays", primaryRays, "CUDA: also time primary rays alone (nearest hit, no shading) per case");
     app.add_option("--bvh-builds", bvhBuilds, "Time only the BVH build of each scene, this many times (no frames)")
         ->check(CLI::Range(1u, 10000u));
     app.add_option("--threads", threads, "With --bvh-builds: comma-separated thread counts to build on (0: all)");
-    app.add_flag("--readback", readback, "CUDA: time reading the image back through pinned and pageable memory");
-    app.add_flag("--image-writers", imageWriters, "Time the image files of one frame of the first scene "
+    addSwitch(app, "--readback", readback, "CUDA: time reading the image back through pinned and pageable memory");
+    addSwitch(app, "--image-writers", imageWriters, "Time the image files of one frame of the first scene "
                                                   "instead (on the first backend; default resolutions 1920x1080,3840x2160)");
     app.add_option("--writes", writes, "--image-writers: timed writes of each file")->check(CLI::Range(1u, 1000u));
-    app.add_option("--image-dir", imageDir, "--image-writers: the folder to write them in");
+    app.add_option("--image-dir", imageDir, "--image-writers: the folder to write them in")->check(kFileName);
     app.add_option("--photon-use", photonUse, "Render this many frames of each case on the first backend and print the "
                                               "share of the last frame's stored photons that some pixel gathers (no times)")
         ->check(CLI::Range(1u, 100000u));
     app.add_option("--device", options.device, "GPU to use");
-    app.add_option("--json", jsonPath, "Write the rows as JSON");
-    app.add_option("--csv", csvPath, "Write the rows as CSV");
+    app.add_option("--json", jsonPath, "Write the rows as JSON")->check(kFileName);
+    app.add_option("--csv", csvPath, "Write the rows as CSV")->check(kFileName);
     if (int code = parseCommandLine(app, argc, argv); code >= 0) {
         return code;
     }
@@ -436,7 +423,7 @@ int run(int argc, char** argv) {
     }
     std::vector<std::pair<std::uint32_t, std::uint32_t>> resolutionList;
     for (const std::string& r : splitList(resolutions)) {
-        resolutionList.push_back(parseResolution(r));
+        resolutionList.push_back(parseImageSize(r, "--resolutions"));
     }
     if (resolutionList.empty()) {
         throw InputError("--resolutions: expected a comma-separated list of WIDTHxHEIGHT");

@@ -120,9 +120,9 @@ int run(int argc, char** argv) {
     std::uint32_t maxFrames = 256;
     BackendOptions options;
     std::vector<std::string> overrides;
-    app.add_option("scene", scenePath, "Scene file (its render settings, then the options below)");
-    app.add_option("--reference", referencePath, "The converged image (.pfm or .exr); not with --camera-path");
-    app.add_option("--compare", comparePath, "Only compare this image (.pfm or .exr) with the reference");
+    app.add_option("scene", scenePath, "Scene file (its render settings, then the options below)")->check(kFileName);
+    app.add_option("--reference", referencePath, "The converged image (.pfm or .exr); not with --camera-path")->check(kFileName);
+    app.add_option("--compare", comparePath, "Only compare this image (.pfm or .exr) with the reference")->check(kFileName);
     app.add_option("--backend", backendName, "auto|cpu|cuda|vulkan")->check(CLI::IsMember({"auto", "cpu", "cuda", "vulkan"}));
     app.add_option("--device", options.device, "GPU to use: index or part of its name");
     app.add_option("--estimators", estimators, "Comma-separated estimators to measure");
@@ -130,11 +130,11 @@ int run(int argc, char** argv) {
         ->check(CLI::Range(1u, 1000000u));
     app.add_option("--window", windowText, "The caustic window: auto[:H] about the reference's brightest pixel, or x0,y0,x1,y1");
     app.add_option("--set", overrides, "KEY=VALUE: a render setting of the scene file (photons, width, seed, ...)");
-    app.add_option("--json", jsonPath, "Write the measurements as JSON");
+    app.add_option("--json", jsonPath, "Write the measurements as JSON")->check(kFileName);
     app.add_option("--times", timesText,
                    "Checkpoints in milliseconds of stage time, e.g. 16,33,100,400 (in place of frames 1, 2, 4, ...; "
                    "--frames still caps the frames)");
-    app.add_option("--images", imagesDir, "Write each checkpoint's images as PFM into this folder");
+    app.add_option("--images", imagesDir, "Write each checkpoint's images as PFM into this folder")->check(kFileName);
     std::string cameraPath;
     OrbitMeasurement orbit;
     app.add_option("--camera-path", cameraPath,

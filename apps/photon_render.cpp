@@ -51,7 +51,8 @@ nlohmann::json stageJson(const std::vector<StageTimes>& frames) {
     return stages;
 }
 
-void writeStats(const std::string& path, Backend& backend, const std::vector<StageTimes>& frames, double wallSeconds) {
+void writeStats(const std::string& path, Backend& backend, const std::vector<StageTimes>& frames, double wallSeconds,
+                const std::vector<std::string>& warnings) {
     const FrameStats& last = backend.lastFrameStats();
     const RenderSettings& s = backend.settings();
     nlohmann::json j;
@@ -65,6 +66,7 @@ void writeStats(const std::string& path, Backend& backend, const std::vector<Sta
     j["estimator"] = toString(s.estimator);
     j["wall_seconds"] = wallSeconds;
     j["stages"] = stageJson(frames);
+    j["warnings"] = warnings;
     PhotonMaps maps = backend.readPhotonMaps();
     const char* kMapNames[] = {"global", "caustic"};
     for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
@@ -100,19 +102,19 @@ int run(int argc, char** argv) {
     bool quiet = false;
     double seconds = 0.0;
     RenderOptions options;
-    app.add_option("scene", scenePath, "Scene file (JSON) or model (.obj, .gltf, .glb); the built-in Cornell box if omitted");
+    app.add_option("scene", scenePath, "Scene file (JSON) or model (.obj, .gltf, .glb); the built-in Cornell box if omitted")->check(kFileName);
     app.add_option("--backend", backendName, "auto|cpu|cuda|vulkan (auto: a GPU if there is one, else the CPU)")
         ->check(CLI::IsMember({"auto", "cpu", "cuda", "vulkan"}));
     app.add_option("--device", backendOptions.device, "GPU to use: index or part of its name");
-    app.add_flag("--validation", backendOptions.validation, "Vulkan: validation layer on; any message fails");
-    app.add_option("--output,-o", output, "Image file: .png (tone-mapped), .exr or .pfm (linear)");
-    app.add_option("--stats", statsPath, "Write per-stage times and photon counts as JSON");
+    addSwitch(app, "--validation", backendOptions.validation, "Vulkan: validation layer on; any message fails");
+    app.add_option("--output,-o", output, "Image file: .png (tone-mapped), .exr or .pfm (linear)")->check(kFileName);
+    app.add_option("--stats", statsPath, "Write per-stage times and photon counts as JSON")->check(kFileName);
     std::string secondsText;
     const Range kSeconds{0.001, 1e6};
     app.add_option("--time", secondsText,
                    "Render frames until this many seconds have passed (at most --frames if given; " +
                        kSeconds.describe() + ")");
-    app.add_flag("--quiet,-q", quiet, "Print nothing but errors");
+    addSwitch(app, "--quiet,-q", quiet, "Print nothing but errors");
     addRenderOptions(app, options);
     if (int code = parseCommandLine(app, argc, argv); code >= 0) {
         return code;
@@ -142,11 +144,16 @@ int run(int argc, char** argv) {
         checkOutputPath(statsPath, "stats");
     }
 
-    if (scene.droppedTriangles > 0 && !quiet) {
-        // Named by the file: a scene file's "name" may be empty, or say nothing of where they were.
-        std::string source = app.count("scene") == 0 ? "<embedded cornell.json>" : scenePath;
-        std::fprintf(stderr, "%s: %llu triangles without area (or not finite) dropped\n", printable(source).c_str(),
-                     static_cast<unsigned long long>(scene.droppedTriangles));
+    // Named by the file: a scene file's "name" may be empty, or say nothing of where it came from.
+    std::string source = app.count("scene") == 0 ? "<embedded cornell.json>" : scenePath;
+    std::vector<std::string> warnings = scene.warnings;
+    auto warn = [&](const std::string& warning) {
+        if (!quiet) {
+            std::fprintf(stderr, "%s\n", printable(warning).c_str());
+        }
+    };
+    for (const std::string& warning : warnings) {
+        warn(warning);
     }
     std::unique_ptr<Backend> backend = createBackend(backendName, backendOptions);
     choosePhotons(settings, backend->runsOnCpu());
@@ -192,9 +199,17 @@ int run(int argc, char** argv) {
             layers.push_back(layer);
         }
     }
+    // A black image with exit 0 looks like a bug; say so, with the likely reasons.
+    if (double lit = litFraction(image, settings.exposure); lit < kNearBlackFraction && interrupted == 0) {
+        char share[32];
+        std::snprintf(share, sizeof share, "%.1f%%", 100.0 * lit);
+        warnings.push_back(source + ": the image is nearly black: " + share + " of its pixels show (at --exposure " +
+                           formatNumber(settings.exposure) + "); do the lights reach what the camera sees?");
+        warn(warnings.back());
+    }
     writeImage(output, image, settings.exposure, settings.tonemap, layers);
     if (!statsPath.empty()) {
-        writeStats(statsPath, *backend, times, wall);
+        writeStats(statsPath, *backend, times, wall, warnings);
     }
     if (interrupted != 0) {
         std::fprintf(stderr, "photon-render: %s: stopped after %u frame%s; the image so far is in %s%s%s\n",

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -26,38 +27,27 @@
 namespace photon {
 namespace {
 
-void parseSize(const std::string& text, std::uint32_t& width, std::uint32_t& height) {
-    unsigned w = 0;
-    unsigned h = 0;
-    char x = 0;
-    char extra = 0;
-    if (std::sscanf(text.c_str(), "%u%c%u%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w == 0 || h == 0 ||
-        w > 16384 || h > 16384) {
-        throw InputError("--resize-after: '" + text + "' is not a size like 800x600");
-    }
-    width = w;
-    height = h;
-}
-
 int run(int argc, char** argv) {
     CLI::App app{"Photon: interactive progressive photon mapping with Vulkan", "photon-view"};
     viewer::ViewerOptions o;
     RenderOptions render;
     std::string vsync = "on";
     std::vector<std::string> resize;
-    bool noHud = false;
-    app.add_option("scene", o.scenePath, "Scene file (JSON); the built-in Cornell box if omitted");
+    bool hud = true;
+    app.add_option("scene", o.scenePath, "Scene file (JSON); the built-in Cornell box if omitted")->check(kFileName);
+    std::string backendName = "vulkan";
+    app.add_option("--backend", backendName, "vulkan (auto means it too): the viewer renders with Vulkan");
     app.add_option("--device", o.device, "GPU to use: index or part of its name");
-    app.add_flag("--validation", o.validation, "Vulkan validation layer on; any message fails");
+    addSwitch(app, "--validation", o.validation, "Vulkan validation layer on; any message fails");
     app.add_option("--vsync", vsync, "Wait for the display's refresh: on|off")->check(CLI::IsMember({"on", "off"}));
-    app.add_flag("--offscreen", o.offscreen, "No window: draw into an image (needs --frames)");
-    app.add_flag("--no-hud", noHud, "Start without the HUD (H or F1 shows it)");
-    app.add_option("--screenshot", o.screenshot, "With --frames: save the last frame here (PNG)");
-    app.add_flag("--screenshot-hud", o.screenshotHud, "Screenshots include the HUD");
+    addSwitch(app, "--offscreen", o.offscreen, "No window: draw into an image (needs --frames)");
+    addSwitch(app, "--hud", hud, "Start with the HUD (on; --no-hud starts without it, H or F1 shows it)");
+    app.add_option("--screenshot", o.screenshot, "With --frames: save the last frame here (PNG)")->check(kFileName);
+    addSwitch(app, "--screenshot-hud", o.screenshotHud, "Screenshots include the HUD");
     app.add_option("--resize-after", resize, "With --frames: after K frames resize the window to WxH")
         ->expected(2)
         ->option_text("K WxH");
-    app.add_option("--stats", o.statsPath, "Write the median frame times as JSON at exit");
+    app.add_option("--stats", o.statsPath, "Write the median frame times as JSON at exit")->check(kFileName);
     std::string cameraPath;
     app.add_option("--camera-path", cameraPath,
                    "Move the camera along a path: orbit:SECONDS turns it about what it looks at once every SECONDS "
@@ -70,6 +60,10 @@ int run(int argc, char** argv) {
         return code;
     }
 
+    if (backendName != "vulkan" && backendName != "auto") {
+        throw InputError("--backend: " + quote(backendName) +
+                         ": photon-view renders with Vulkan, whose images its window shows (photon-render has cpu and cuda)");
+    }
     std::string& viewName = render.values["--view"];
     // The viewer's own views: the photon dots and the auxiliary images.
     bool ownView = false;
@@ -105,7 +99,7 @@ int run(int argc, char** argv) {
         o.followPath = true;
     }
     o.vsync = vsync == "on";
-    o.hud = !noHud;
+    o.hud = hud;
     o.frames = app.count("--frames") > 0 ? o.settings.frames : 0;
     if (!resize.empty()) {
         char* end = nullptr;
@@ -114,7 +108,7 @@ int run(int argc, char** argv) {
             throw InputError("--resize-after: '" + resize[0] + "' is not a number of frames");
         }
         o.resizeAfter = std::uint32_t(frames);
-        parseSize(resize[1], o.resizeWidth, o.resizeHeight);
+        std::tie(o.resizeWidth, o.resizeHeight) = parseImageSize(resize[1], "--resize-after");
     }
     if (o.frames == 0 && (o.offscreen || !o.screenshot.empty() || o.resizeAfter > 0)) {
         throw InputError("--offscreen, --screenshot and --resize-after need --frames N");

@@ -5,6 +5,7 @@
 #include "core/loaders/environment_loader.h"
 #include "core/settings/setting_specs.h"
 #include "core/system/error.h"
+#include "core/system/program.h"
 
 namespace photon {
 namespace {
@@ -27,8 +28,7 @@ void addRenderOptions(CLI::App& app, RenderOptions& o) {
         std::string help = spec.help;
         if (spec.kind == SettingKind::Flag) {
             // Each flag also has its --no- form, to turn off what a scene file turned on.
-            std::string names = std::string(spec.flag) + ",!--no-" + (spec.flag + 2);
-            app.add_flag(names, o.flags[spec.flag], help)->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+            addSwitch(app, spec.flag, o.flags[spec.flag], help);
             continue;
         }
         // Given twice, the last one counts (as in most tools), so that a script can override.
@@ -40,10 +40,11 @@ void addRenderOptions(CLI::App& app, RenderOptions& o) {
         }
         app.add_option(spec.flag, o.values[spec.flag], help)->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
     }
-    app.add_flag("--allow-outside-paths", o.paths.allowOutside,
+    addSwitch(app, "--allow-outside-paths", o.paths.allowOutside,
                  "Let model files read buffers, images, MTL files and textures outside their own folder");
     app.add_option("--environment", o.environment,
-                   "Light the scene with this equirectangular .hdr or .exr map (replaces its environment or background)");
+                   "Light the scene with this equirectangular .hdr or .exr map (replaces its environment or background)")
+        ->check(kFileName);
     app.add_option("--environment-intensity", o.environmentIntensity,
                    "Factor on the --environment map's texels (" + kEnvironmentIntensity.describe() + ")");
 }

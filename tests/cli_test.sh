@@ -115,10 +115,12 @@ grep -q -- "--radius" "$tmp/err" && { echo "FAIL: a scene without geometry blame
 printf '\xef\xbb\xbfv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' > "$tmp/bom.obj"
 expect 0 "" "$tmp/bom.obj" "${small[@]}" -o "$tmp/x.png"
 
-# A mesh's warnings name the scene file (a scene's "name" is often empty).
+# A mesh's warnings name the mesh file and where the scene file names it (a scene's "name" is
+# often empty); a model rendered by itself names the model.
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\n' > "$tmp/flat.obj"
 printf '{"camera": {"position": [0.3, 0.3, 3], "look_at": [0.3, 0.3, 0]}, "materials": {}, "lights": [{"type": "point", "position": [0, 1, 2], "power": 10}], "objects": [{"type": "mesh", "file": "flat.obj"}]}' > "$tmp/warn.json"
-expect 0 "warn.json: 1 triangles without area (or not finite) dropped" "$tmp/warn.json" "${small[@]}" -o "$tmp/x.png"
+expect 0 "flat.obj ($tmp/warn.json: /objects/0/file): 1 triangle without area (or not finite) dropped" "$tmp/warn.json" "${small[@]}" -o "$tmp/x.png"
+expect 0 "flat.obj: 1 triangle without area (or not finite) dropped" "$tmp/flat.obj" "${small[@]}" -o "$tmp/x.png"
 
 # Files a model names stay in its folder tree, unless --allow-outside-paths.
 mkdir -p "$tmp/model"
@@ -133,6 +135,44 @@ expect 2 "outer.json: /objects/0/file: " "$tmp/outer.json" "${small[@]}" -o "$tm
 expect 0 "" "$tmp/outer.json" "${small[@]}" -o "$tmp/x.png" --allow-outside-paths
 printf '{"camera": {"position": [0, 1, 4], "look_at": [0, 1, 0]}, "materials": {}, "lights": [{"type": "point", "position": [0, 3, 0], "power": 10}], "objects": [{"type": "mesh", "file": "gone.obj"}]}' > "$tmp/gone.json"
 expect 2 "gone.json: /objects/0/file: " "$tmp/gone.json" "${small[@]}" -o "$tmp/x.png"
+
+# Issue 38: every documented form works as written, and no message grows with its input.
+expect 0 "" "${small[@]}" -o "$tmp/x.png" --no-quiet --no-validation --no-allow-outside-paths
+expect 0 "" "${small[@]}" -o "$tmp/x.png" --quiet --no-quiet
+[ -s "$tmp/err" ] || { echo "FAIL: --quiet --no-quiet printed nothing"; failures=$((failures + 1)); }
+expect 2 "--output: an empty file name" "${small[@]}" -o ''
+expect 2 "--stats: an empty file name" "${small[@]}" -o "$tmp/x.png" --stats ''
+# A scene file with a key of 3 MB: its JSON pointer is in the message.
+long=$(head -c 3000000 /dev/zero | tr '\0' 'x')
+printf '{"%s": 1}' "$long" >"$tmp/longkey.json"
+"$render" "$tmp/longkey.json" "${small[@]}" -o "$tmp/x.png" >"$tmp/out" 2>"$tmp/err"
+code=$?
+bytes=$(wc -c <"$tmp/err")
+if [ "$code" -ne 2 ] || [ "$bytes" -gt 1001 ] || [ "$(wc -l <"$tmp/err")" -ne 1 ] || ! grep -qF "bytes cut]" "$tmp/err" ||
+   ! grep -qF "unknown key" "$tmp/err"; then
+  echo "FAIL: a 3 MB key gave exit $code and $bytes bytes of message: $(head -c 300 "$tmp/err")"; failures=$((failures + 1))
+else
+  echo "ok: exit 2: a 3 MB key, a message of $bytes bytes"
+fi
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1e30\nv 1 0 1e30\nv 0 1 1e30\nf 1 2 3\nf 4 5 6\n' > "$tmp/far.obj"
+expect 2 "far.obj: the model's triangles are 1e+30 wide (z from 0 to 1e+30)" "$tmp/far.obj" "${small[@]}" -o "$tmp/x.png"
+grep -q -- "--radius" "$tmp/err" && { echo "FAIL: a model at 1e30 blames --radius"; failures=$((failures + 1)); }
+printf '{"camera": {"position": [0, 1, 4], "look_at": [0, 1, 0]}, "materials": {}, "lights": [{"type": "point", "position": [0, 3, 0], "power": 10}], "objects": [{"type": "mesh", "file": "far.obj"}]}' > "$tmp/far.json"
+expect 2 "far.json: /objects/0/file: $tmp/far.obj: the model's triangles are 1e+30 wide" "$tmp/far.json" "${small[@]}" -o "$tmp/x.png"
+printf '{"camera": {"position": [0, 1, 4], "look_at": [0, 1, 0]}, "materials": {"grey": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5]}}, "lights": [{"type": "point", "position": [0, 0, 1e20], "power": 10}], "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "grey"}]}' > "$tmp/farlight.json"
+expect 2 "farlight.json: /objects: the scene (its objects and lights) is 1e+20 wide" "$tmp/farlight.json" "${small[@]}" -o "$tmp/x.png"
+# A black image with exit 0 says so (a camera looking away from the only lit object).
+printf '{"camera": {"position": [0, 0, 0], "look_at": [0, 0, 1]}, "materials": {"grey": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5]}}, "lights": [{"type": "point", "position": [0, 0, -3], "power": 10}], "objects": [{"type": "sphere", "center": [0, 0, -4], "radius": 0.5, "material": "grey"}]}' > "$tmp/away.json"
+expect 0 "away.json: the image is nearly black: 0.0% of its pixels show" "$tmp/away.json" "${small[@]}" -o "$tmp/x.png" --stats "$tmp/away-stats.json"
+grep -q "nearly black" "$tmp/away-stats.json" || { echo "FAIL: the stats lack the warning"; failures=$((failures + 1)); }
+
+bench="$(dirname "$render")/photon-bench"
+"$bench" --resolutions 99999x99999 >"$tmp/out" 2>"$tmp/err"
+if [ $? -ne 2 ] || ! grep -qF -- "--resolutions: '99999x99999': the width 99999 is not in [1, 16384] (--width's range)" "$tmp/err"; then
+  echo "FAIL: photon-bench --resolutions 99999x99999"; cat "$tmp/err"; failures=$((failures + 1))
+else
+  echo "ok: exit 2: photon-bench --resolutions 99999x99999"
+fi
 
 # Runtime failure: a backend this machine cannot run.
 if ! command -v nvidia-smi >/dev/null 2>&1; then

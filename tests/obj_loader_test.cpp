@@ -117,6 +117,20 @@ TEST(ObjLoader, DiffuseMapIsDecodedFromSrgbToLinear) {
     expectNear(texel(scene, m.albedoTexture, 1, 0), glm::vec3(0.0f, 0.0f, 1.0f), 1e-4f);
 }
 
+// Windows exporters write `mtllib sub\ok.mtl`: the `\` is a separator, as in map_Kd, not
+// tinyobjloader's escape (which still escapes a space in a name).
+TEST(ObjLoader, MtllibReadsABackslashAsASeparator) {
+    Files files;
+    files.files["sub/ok.mtl"] = "newmtl red\nKd 1 0 0\n";
+    files.files["my file.mtl"] = "newmtl blue\nKd 0 0 1\n";
+    Scene scene;
+    load(scene, "a.obj", "mtllib sub\\ok.mtl\nusemtl red\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", files);
+    expectNear(scene.materials[scene.triangles[0].material].albedo, glm::vec3(1.0f, 0.0f, 0.0f), 1e-6f);
+    Scene spaced;
+    load(spaced, "b.obj", "  mtllib my\\ file.mtl\nusemtl blue\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", files);
+    expectNear(spaced.materials[spaced.triangles[0].material].albedo, glm::vec3(0.0f, 0.0f, 1.0f), 1e-6f);
+}
+
 // A 16-bit PPM is refused by name: stb_image's conversion of it to four channels overflows its
 // buffer (the render fuzzer found it through an MTL's map_Kd).
 TEST(ObjLoader, SixteenBitImagesOtherThanPngAreRefused) {

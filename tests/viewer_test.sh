@@ -72,7 +72,8 @@ run resize 0 "${xvfb[@]}" "$view" "${common[@]}" --width 200 --height 150 --fram
 run resize-reference 0 "$render" --backend vulkan "${common[@]}" --width 240 --height 180 --frames 4 -o "$out/resized-reference.png"
 same "$out/resized.png" "$out/resized-reference.png"
 
-run offscreen 0 "$view" "${common[@]}" --offscreen --width 160 --height 120 --frames 4 --screenshot "$out/offscreen.png"
+# --backend vulkan is the viewer's one backend (every render option of photon-render works here).
+run offscreen 0 "$view" "${common[@]}" --backend vulkan --offscreen --width 160 --height 120 --frames 4 --screenshot "$out/offscreen.png"
 run offscreen-reference 0 "$render" --backend vulkan "${common[@]}" --width 160 --height 120 --frames 4 -o "$out/offscreen-reference.png"
 same "$out/offscreen.png" "$out/offscreen-reference.png"
 
@@ -92,6 +93,8 @@ run bad-path 2 "$view" --offscreen --frames 1 --camera-path orbit:0
 
 run no-frames 2 "$view" --offscreen
 run bad-view 2 "$view" --offscreen --frames 1 --view nearest
+run bad-backend 2 "$view" --offscreen --frames 1 --backend cuda
+grep -qF "photon-view renders with Vulkan" "$out/bad-backend.log" || { echo "FAIL: --backend cuda says why"; failures=$((failures + 1)); }
 run bad-scene 2 "$view" "$out/missing.json" --offscreen --frames 1
 
 if [ "$failures" -gt 0 ]; then

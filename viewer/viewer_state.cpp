@@ -161,6 +161,9 @@ void Viewer::installScene(const Scene& scene, const std::string& path, bool keep
     }
     backend_->setScene(lights_.scene());
     state_.settingsChanged = true;
+    for (const std::string& warning : scene.warnings) {
+        report(warning);
+    }
     report("loaded " + (path.empty() ? scene.name : path));
     setTitle();
 }

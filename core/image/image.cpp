@@ -190,6 +190,13 @@ double meanLuminance(const Image& image) {
     return image.pixels.empty() ? 0.0 : sum / double(image.pixels.size());
 }
 
+double litFraction(const Image& image, float exposure) {
+    float threshold = kLitRadiance / std::exp2(exposure);
+    auto lit = std::count_if(image.pixels.begin(), image.pixels.end(),
+                             [&](const glm::vec4& p) { return std::max({p.x, p.y, p.z}) >= threshold; });
+    return image.pixels.empty() ? 0.0 : double(lit) / double(image.pixels.size());
+}
+
 bool allFinite(const Image& image) {
     return std::all_of(image.pixels.begin(), image.pixels.end(), [](const glm::vec4& p) {
         return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);

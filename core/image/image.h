@@ -56,6 +56,11 @@ Image readImage(const std::string& path);
 double relativeRmse(const Image& a, const Image& reference);
 double meanLuminance(const Image& image);
 bool allFinite(const Image& image);
+// The share of pixels that show: max(r, g, b) · 2^exposure at least kLitRadiance (about 10% grey
+// once sRGB-encoded). Below kNearBlackFraction the programs warn that the image is nearly black.
+inline constexpr float kLitRadiance = 0.01f;
+inline constexpr double kNearBlackFraction = 0.1;
+double litFraction(const Image& image, float exposure);
 // |a - b| scaled so that the largest difference is 1, for looking at.
 Image differenceImage(const Image& a, const Image& b);
 

@@ -6,11 +6,16 @@
 #include <filesystem>
 
 #include "core/scene/studio_environment.h"
+#include "core/settings/setting_specs.h"
 #include "core/system/error.h"
 #include "core/system/input_file.h"
 
 namespace photon {
 namespace {
+
+// The lights of a model without its own (W/m² of the sun; the studio map's scale).
+constexpr double kStudioSunIrradiance = 3.0;
+constexpr double kStudioRadiance = 1.0;
 
 std::string lowerExtension(const std::string& path) {
     std::size_t dot = path.find_last_of('.');
@@ -24,6 +29,10 @@ std::string lowerExtension(const std::string& path) {
 }
 
 }  // namespace
+
+std::string droppedMessage(std::uint64_t count) {
+    return std::to_string(count) + (count == 1 ? " triangle" : " triangles") + " without area (or not finite) dropped";
+}
 
 std::string folderOf(const std::string& path) {
     std::size_t slash = path.find_last_of('/');
@@ -106,6 +115,18 @@ ModelExtras addModel(Scene& scene, const std::string& path, const std::string& b
         throw InputError(path + (lost > 0 ? ": no triangles: all " + std::to_string(lost) + " have no area or are not finite"
                                           : std::string(": no triangles to render")));
     }
+    // A vertex or a node's transform far off (1e30) would make every automatic radius infinite.
+    glm::vec3 lo(FLOAT_MAX);
+    glm::vec3 hi(-FLOAT_MAX);
+    for (std::size_t i = triangles; i < scene.triangles.size(); ++i) {
+        const Triangle& t = scene.triangles[i];
+        lo = glm::min(lo, glm::min(t.v0, glm::min(t.v1, t.v2)));
+        hi = glm::max(hi, glm::max(t.v0, glm::max(t.v1, t.v2)));
+    }
+    if (widestSpan(lo, hi) > kMaxSceneSpan) {
+        throw InputError(path + ": the model's triangles are " + describeSpan(lo, hi) + ", wider than the " +
+                         formatNumber(kMaxSceneSpan) + " Photon renders (a vertex or a node's transform far off?)");
+    }
     return extras;
 }
 
@@ -127,6 +148,9 @@ Scene loadModelScene(const std::string& path, const std::string& bytes, const Fi
     options.cameraAndLights = true;
     options.paths = paths;
     ModelExtras extras = addModel(scene, path, bytes, options, read);
+    if (scene.droppedTriangles > 0) {
+        scene.warnings.push_back(path + ": " + droppedMessage(scene.droppedTriangles));
+    }
     // The camera, if the file has none, frames the bounds: from the front, a little above, the
     // bounding sphere filling the vertical field of view.
     scene.finalize();
@@ -141,10 +165,18 @@ Scene loadModelScene(const std::string& path, const std::string& bytes, const Fi
         scene.camera.lookAt = centre;
         scene.camera.up = glm::vec3(0.0f, 1.0f, 0.0f);
     }
-    if (extras.lights == 0 && scene.lights.empty()) {
-        // The sun over the camera's left shoulder, and the studio environment all round (as glTF
-        // viewers light a model; core/scene/studio_environment.h): the sun alone left the far
-        // side of flat models seen at an angle black, on black.
+    // The model's own lights, or the studio's. Punctual lights (KHR_lights_punctual) are the
+    // author's lighting and light the model alone. Emissive surfaces alone do only if they carry
+    // most of the power: more than the sun and the studio would pour onto the model's bounding
+    // sphere (sun E + studio πL over its cross-section πr²); labels, LEDs and screens (assimp's
+    // ClearCoatTest) glow under the studio lights instead of rendering black on black. A surface's
+    // power is taken from its emissive factor, an upper bound where a texture darkens it.
+    double emitted = 0.0;
+    for (const Light& l : scene.lights) {
+        emitted += l.type == LIGHT_TRIANGLES ? (double(l.power.x) + double(l.power.y) + double(l.power.z)) / 3.0 : 0.0;
+    }
+    double studioPower = (kStudioSunIrradiance + PI * kStudioRadiance) * PI * double(radius) * double(radius);
+    if (extras.lights == 0 && emitted <= studioPower) {
         glm::vec3 forward = glm::normalize(scene.camera.lookAt - scene.camera.position);
         glm::vec3 side = glm::cross(forward, scene.camera.up);
         if (!(glm::length(side) > 1e-6f)) {  // a glTF camera looking along its up vector
@@ -152,11 +184,11 @@ Scene loadModelScene(const std::string& path, const std::string& bytes, const Fi
         }
         glm::vec3 right = glm::normalize(side);
         glm::vec3 up = glm::cross(right, forward);
-        scene.addDirectionalLight(glm::normalize(forward + 0.6f * right - 1.2f * up), glm::vec3(3.0f));
+        scene.addDirectionalLight(glm::normalize(forward + 0.6f * right - 1.2f * up), glm::vec3(kStudioSunIrradiance));
         EnvironmentLight studio;
         studio.source = "studio";
         studio.map = makeStudioMap();
-        studio.radiance = glm::vec3(1.0f);
+        studio.radiance = glm::vec3(kStudioRadiance);
         studio.lights = true;
         scene.setEnvironment(std::move(studio));
     }

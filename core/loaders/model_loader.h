@@ -67,6 +67,9 @@ ModelExtras addObjModel(Scene& scene, const std::string& path, const std::string
 ModelExtras addGltfModel(Scene& scene, const std::string& path, const std::string& bytes, const ModelOptions& options,
                          const FileReader& read);
 
+// "N triangles without area (or not finite) dropped", the warning a mesh with some gets.
+std::string droppedMessage(std::uint64_t count);
+
 // The folder of a path, for resolving what a file references ("" for a bare name).
 std::string folderOf(const std::string& path);
 

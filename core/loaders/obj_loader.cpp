@@ -108,6 +108,24 @@ std::string withoutBom(std::string text) {
     return text;
 }
 
+// tinyobjloader reads `\` in an mtllib line as an escape (of a space in a name), so that
+// `mtllib sub\ok.mtl`, as Windows exporters write it, would name "subok.mtl": a `\` before
+// anything but a space becomes the separator `/` (namedFile reads `\` as one elsewhere).
+void mtllibSeparators(std::string& text) {
+    for (std::size_t line = 0; line < text.size();) {
+        std::size_t end = std::min(text.find('\n', line), text.size());
+        std::size_t start = text.find_first_not_of(" \t", line);
+        if (start < end && text.compare(start, 7, "mtllib ") == 0) {
+            for (std::size_t i = start; i + 1 < end; ++i) {
+                if (text[i] == '\\' && text[i + 1] != ' ') {
+                    text[i] = '/';
+                }
+            }
+        }
+        line = end + 1;
+    }
+}
+
 // MTL files through the loader's file reader, relative to the OBJ file and inside its folder tree.
 class MtlReader final : public tinyobj::MaterialReader {
 public:
@@ -197,6 +215,7 @@ ModelExtras addObjModel(Scene& scene, const std::string& path, const std::string
                         const FileReader& read) {
     std::string text = withoutBom(file);
     checkObjText(path, text);
+    mtllibSeparators(text);
     tinyobj::attrib_t attrib;
     std::vector<tinyobj::shape_t> shapes;
     std::vector<tinyobj::material_t> materials;

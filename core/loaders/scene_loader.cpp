@@ -254,10 +254,14 @@ void readMesh(Scene& scene, const Node& node, const std::string& folder, const F
         file.fail(quote(name) + " is not a model file Photon reads (.obj, .gltf, .glb)");
     }
     std::string path = !name.empty() && name[0] == '/' ? name : folder + name;
+    std::uint64_t dropped = scene.droppedTriangles;
     try {
         addModel(scene, path, read(path, "model file"), options, read);
     } catch (const InputError& e) {
         file.fail(e.what());
+    }
+    if (scene.droppedTriangles > dropped) {
+        scene.warnings.push_back(path + " (" + file.where() + "): " + droppedMessage(scene.droppedTriangles - dropped));
     }
 }
 
@@ -550,6 +554,10 @@ Scene loadSceneJson(const std::string& text, const std::string& sourceName, cons
         readRender(root["render"], scene.render);
     }
     scene.finalize();
+    if (widestSpan(scene.boundsMin, scene.boundsMax) > kMaxSceneSpan) {
+        root["objects"].fail("the scene (its objects and lights) is " + describeSpan(scene.boundsMin, scene.boundsMax) +
+                             ", wider than the " + formatNumber(kMaxSceneSpan) + " Photon renders");
+    }
     if (scene.lights.empty()) {
         root["lights"].fail("nothing emits light: the only light is an environment that is black or does not light");
     }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <utility>
 
@@ -457,6 +458,23 @@ void Scene::setBackground(glm::vec3 radiance) {
     light.radiance = radiance;
     light.lights = false;
     setEnvironment(std::move(light));
+}
+
+double widestSpan(glm::vec3 lo, glm::vec3 hi) {
+    return std::max({double(hi.x) - double(lo.x), double(hi.y) - double(lo.y), double(hi.z) - double(lo.z)});
+}
+
+std::string describeSpan(glm::vec3 lo, glm::vec3 hi) {
+    int axis = 0;
+    for (int a = 1; a < 3; ++a) {
+        if (double(hi[a]) - double(lo[a]) > double(hi[axis]) - double(lo[axis])) {
+            axis = a;
+        }
+    }
+    char text[96];
+    std::snprintf(text, sizeof text, "%.6g wide (%c from %.6g to %.6g)", widestSpan(lo, hi), "xyz"[axis], double(lo[axis]),
+                  double(hi[axis]));
+    return text;
 }
 
 float Scene::diagonal() const { return glm::length(boundsMax - boundsMin); }

@@ -52,6 +52,14 @@ struct TriangleObject {
     std::uint32_t count = 0;
 };
 
+// The widest scene Photon renders (along any axis, scene units): its query radii, grid cells and
+// areas (a span squared) stay within floats. The loaders refuse wider models and scenes by name.
+inline constexpr double kMaxSceneSpan = 1e15;
+
+// "1e+30 wide (z from 0 to 1e+30)": the widest axis of a box, for messages.
+std::string describeSpan(glm::vec3 lo, glm::vec3 hi);
+double widestSpan(glm::vec3 lo, glm::vec3 hi);
+
 struct Scene {
     std::string name;
     // The shared arrays: spheres, planes, quads, triangles with their attributes, materials,
@@ -71,6 +79,9 @@ struct Scene {
     glm::vec3 boundsMax{0.0f};
     RenderSettings render;
     std::uint64_t droppedTriangles = 0;  // of meshes: zero area or not finite
+    // What the loaders noticed and the user should hear of, one line each naming the file (and
+    // the place in it): triangles dropped, a model lit by the studio because its own lights are weak.
+    std::vector<std::string> warnings;
     BvhStats bvh;                        // by finalize()
 
     std::uint32_t addMaterial(const std::string& materialName, const Material& m);

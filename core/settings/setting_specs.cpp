@@ -166,6 +166,28 @@ std::string formatNumber(double x) {
     return text;
 }
 
+std::pair<std::uint32_t, std::uint32_t> parseImageSize(const std::string& text, const std::string& option) {
+    // Digits, 'x', digits: no signs, spaces or exponents; a side of 20 digits is still read (as
+    // out of range), not wrapped.
+    std::size_t cross = text.find_first_of("xX");
+    auto digits = [](const std::string& s) {
+        return !s.empty() && std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; });
+    };
+    if (cross == std::string::npos || !digits(text.substr(0, cross)) || !digits(text.substr(cross + 1))) {
+        throw InputError(option + ": " + quote(text) + " is not WIDTHxHEIGHT (like 640x480)");
+    }
+    double side[2] = {std::strtod(text.substr(0, cross).c_str(), nullptr), std::strtod(text.substr(cross + 1).c_str(), nullptr)};
+    const char* keys[2] = {"width", "height"};
+    for (int i = 0; i < 2; ++i) {
+        const SettingSpec& spec = *findSetting(keys[i]);
+        if (!spec.range.contains(side[i])) {
+            throw InputError(option + ": " + quote(text) + ": the " + keys[i] + " " + formatNumber(side[i]) + " is not " +
+                             spec.range.describe() + " (" + spec.flag + "'s range)");
+        }
+    }
+    return {std::uint32_t(side[0]), std::uint32_t(side[1])};
+}
+
 std::string Range::describe() const {
     if (lo == 0.0 && hi == kInfinity) {
         return openLo ? "positive" : "non-negative";

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/frame/estimator_policy.h"
@@ -89,6 +90,10 @@ void choosePhotons(RenderSettings& settings, bool onCpu);
 // dispersive material (an Abbe number, KHR_materials_dispersion), which RGB cannot show; else RGB
 // (spectral's first frames carry a colour cast; docs/performance.md, issue 21).
 void chooseSpectral(RenderSettings& settings, const Scene& scene);
+
+// "WIDTHxHEIGHT" (or "WxH" with a capital X) as an option gives an image size: each side in
+// --width's and --height's range, or InputError naming `option` and which side is out of range.
+std::pair<std::uint32_t, std::uint32_t> parseImageSize(const std::string& text, const std::string& option);
 
 // The default length of photon-render's render without --frames, --time or frames in the scene.
 inline constexpr double kDefaultRenderSeconds = 2.0;

@@ -32,6 +32,26 @@ std::size_t utf8Length(const std::string& s, std::size_t i) {
     return n;
 }
 
+// The largest cut at most `at` that does not split a UTF-8 sequence of `s`.
+std::size_t characterBoundary(const std::string& s, std::size_t at) {
+    while (at > 0 && at < s.size() && (static_cast<unsigned char>(s[at]) & 0xc0) == 0x80) {
+        at -= 1;
+    }
+    return at;
+}
+
+// The start and the end of a line longer than kMessageMax, the middle said in bytes.
+std::string bounded(const std::string& line) {
+    if (line.size() <= kMessageMax) {
+        return line;
+    }
+    constexpr std::size_t kHead = 600;
+    constexpr std::size_t kTail = 300;
+    std::size_t head = characterBoundary(line, kHead);
+    std::size_t tail = characterBoundary(line, line.size() - kTail);
+    return line.substr(0, head) + " ... [" + std::to_string(tail - head) + " bytes cut] ... " + line.substr(tail);
+}
+
 }  // namespace
 
 std::string printable(const std::string& text) {
@@ -59,17 +79,14 @@ std::string printable(const std::string& text) {
         out.append(text, i, n);
         i += n;
     }
-    return out;
+    return bounded(out);
 }
 
 std::string quote(const std::string& token) {
     if (token.size() <= kQuotedTokenMax) {
         return "'" + token + "'";
     }
-    std::size_t cut = kQuotedTokenMax;
-    while (cut > 0 && (static_cast<unsigned char>(token[cut]) & 0xc0) == 0x80) {
-        cut -= 1;  // not inside a UTF-8 sequence
-    }
+    std::size_t cut = characterBoundary(token, kQuotedTokenMax);
     return "'" + token.substr(0, cut) + "...'";
 }
 

@@ -18,7 +18,10 @@ struct RuntimeError : std::runtime_error {
 };
 
 // The text as one line a terminal shows as it is: UTF-8 passes, control characters (C0, DEL,
-// C1) and bytes that are not UTF-8 become \xNN escapes.
+// C1) and bytes that are not UTF-8 become \xNN escapes; at most kMessageMax bytes, a longer line
+// keeping its start and its end (where the reason is) around " ... [N bytes cut] ... ". Every
+// message the programs print passes through it, so no input makes a line longer.
+inline constexpr std::size_t kMessageMax = 1000;
 std::string printable(const std::string& text);
 
 // A token from a file as a message quotes it: 'token', cut to kQuotedTokenMax bytes (at a UTF-8

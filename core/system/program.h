@@ -34,6 +34,19 @@ int runProgram(const char* name, Run run) {
     }
 }
 
+// A boolean option and its --no- form ("--quiet,-q" also takes --no-quiet), the last one given
+// counting: every flag of every program can be turned back off, as the README says.
+inline CLI::Option* addSwitch(CLI::App& app, const std::string& names, bool& value, const std::string& help) {
+    std::string longName = names.substr(0, names.find(','));
+    return app.add_flag(names + ",!--no-" + longName.substr(2), value, help)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+}
+
+// A file or folder option: an empty name (`-o ''`) is refused by the option's name, not met later
+// as a file without a name.
+inline const CLI::Validator kFileName{[](std::string& name) { return name.empty() ? std::string("an empty file name") : std::string(); },
+                                      "FILE"};
+
 // Parses the command line: --help prints the help and returns 0; a bad command line throws
 // InputError with CLI11's one-line reason; otherwise returns -1 (go on).
 inline int parseCommandLine(CLI::App& app, int argc, char** argv) {
