@@ -310,6 +310,101 @@ TEST(GltfLoader, BadFilesNameTheJsonPointerAndTheReason) {
     EXPECT_EQ(errorOf("b.gltf", "{not json").rfind("b.gltf: ", 0), 0u);
 }
 
+// ---- What the pre-pass refuses (gltf_document.cpp, gltf_schema.cpp) --------------------------------
+
+TEST(GltfLoader, ValuesOfTheWrongTypeAreRefusedByPointer) {
+    struct Case {
+        const char* member;
+        const char* value;
+        const char* message;
+    };
+    const Case cases[] = {
+        {"materials", R"([{"pbrMetallicRoughness": ["not an object"]}])", "/materials/0/pbrMetallicRoughness: must be an object, not an array"},
+        {"materials", R"([{"pbrMetallicRoughness": {"baseColorTexture": {"index": -1}}}])",
+         "/materials/0/pbrMetallicRoughness/baseColorTexture/index: must be a non-negative integer, not -1"},
+        {"materials", R"([{"normalTexture": {"index": 0, "scale": "2"}}])", "/materials/0/normalTexture/scale: must be a number, not a string"},
+        {"materials", R"([{"occlusionTexture": {"index": 0, "strength": null}}])", "/materials/0/occlusionTexture/strength: must be a number, not null"},
+        {"materials", R"([{"doubleSided": 1}])", "/materials/0/doubleSided: must be a boolean, not a number"},
+        {"materials", R"([{"emissiveFactor": [1, "0", 0]}])", "/materials/0/emissiveFactor/1: must be a number, not a string"},
+        {"materials", R"([{"emissiveTexture": {"index": 0, "extensions": {"KHR_texture_transform": "Not an object"}}}])",
+         "/materials/0/emissiveTexture/extensions/KHR_texture_transform: must be an object, not a string"},
+        {"materials", R"([{"emissiveTexture": {"index": 0, "extensions": {"KHR_texture_transform": {"texCoord": 1.5}}}}])",
+         "/materials/0/emissiveTexture/extensions/KHR_texture_transform/texCoord: must be a non-negative integer, not 1.5"},
+        {"materials", R"([{"extensions": {"KHR_materials_ior": {"ior": "1.5"}}}])", "/materials/0/extensions/KHR_materials_ior/ior: must be a number, not a string"},
+        {"materials", R"([{"extensions": {"KHR_materials_volume": {"attenuationColor": 1}}}])",
+         "/materials/0/extensions/KHR_materials_volume/attenuationColor: must be an array, not a number"},
+        {"materials", R"([{"extensions": {"KHR_materials_transmission": {"transmissionFactor": true}}}])",
+         "/materials/0/extensions/KHR_materials_transmission/transmissionFactor: must be a number, not a boolean"},
+        {"materials", R"([{"extensions": {"KHR_materials_emissive_strength": []}}])",
+         "/materials/0/extensions/KHR_materials_emissive_strength: must be an object, not an array"},
+        {"materials", R"([{"extensions": []}])", "/materials/0/extensions: must be an object, not an array"},
+        {"materials", R"([{"name": 42}])", "/materials/0/name: must be a string, not a number"},
+        {"meshes", R"([{"primitives": {"attributes": {"POSITION": 0}}}])", "/meshes/0/primitives: must be an array, not an object"},
+        {"meshes", R"([{"primitives": [{"attributes": {"POSITION": "0"}}]}])", "/meshes/0/primitives/0/attributes/POSITION: must be a non-negative integer, not a string"},
+        {"meshes", R"([{"primitives": [{"attributes": {"POSITION": 0}, "targets": [{"a/b~": -2}]}]}])",
+         "/meshes/0/primitives/0/targets/0/a~1b~0: must be a non-negative integer, not -2"},
+        {"nodes", R"([{"mesh": 0, "matrix": {}}])", "/nodes/0/matrix: must be an array, not an object"},
+        {"nodes", R"([{"mesh": 0, "children": [1, 2.5]}])", "/nodes/0/children/1: must be a non-negative integer, not 2.5"},
+        {"nodes", R"([{"mesh": 0.0}])", "/nodes/0/mesh: must be a non-negative integer, not 0.0"},  // tinygltf: no mesh
+        {"nodes", R"([{"mesh": 0, "extensions": {"KHR_lights_punctual": {"light": -1}}}])",
+         "/nodes/0/extensions/KHR_lights_punctual/light: must be a non-negative integer, not -1"},
+        {"extensions", R"({"KHR_lights_punctual": {"lights": [{"type": "point", "intensity": "bright"}]}})",
+         "/extensions/KHR_lights_punctual/lights/0/intensity: must be a number, not a string"},
+        {"scene", "\"0\"", "/scene: must be a non-negative integer, not a string"},
+        {"scenes", R"([{"nodes": 0}])", "/scenes/0/nodes: must be an array, not a number"},
+        {"asset", R"({"version": 2})", "/asset/version: must be a string, not a number"},
+        {"extensionsUsed", R"([7])", "/extensionsUsed/0: must be a string, not a number"},
+        {"cameras", R"([{"type": "perspective", "perspective": {"yfov": "wide"}}])", "/cameras/0/perspective/yfov: must be a number, not a string"},
+        {"samplers", R"([{"wrapS": -10497}])", "/samplers/0/wrapS: must be a non-negative integer, not -10497"},
+        {"textures", R"([{"source": 0.5}])", "/textures/0/source: must be a non-negative integer, not 0.5"},
+        {"images", R"([{"uri": 5}])", "/images/0/uri: must be a string, not a number"},
+        {"skins", R"([{"joints": [0, -1]}])", "/skins/0/joints/1: must be a non-negative integer, not -1"},
+        {"animations", R"([{"channels": [{"sampler": 0, "target": {"node": 0, "path": 3}}]}])",
+         "/animations/0/channels/0/target/path: must be a string, not a number"},
+        {"animations", R"([{"samplers": [{"input": 0, "output": 1, "interpolation": false}]}])",
+         "/animations/0/samplers/0/interpolation: must be a string, not a boolean"},
+    };
+    for (const Case& c : cases) {
+        Gltf g;
+        g.parts[c.member] = c.value;
+        EXPECT_EQ(errorOf("t.gltf", g.text()), std::string("t.gltf: ") + c.message) << c.value;
+    }
+    // The accessors the helper writes.
+    Gltf g;
+    std::string text = g.text();
+    text.replace(text.find(R"("count": 3)"), 10, R"("count": -3)");
+    EXPECT_EQ(errorOf("t.gltf", text), "t.gltf: /accessors/0/count: must be a non-negative integer, not -3");
+    // Unknown properties are glTF's to allow, whatever their type; extras are anything; the loader
+    // checks what is in range.
+    g.parts["materials"] = R"([{"unknown": [1], "extras": 5, "pbrMetallicRoughness": {"metallicFactor": 0, "extras": "x"}}])";
+    g.parts["nodes"] = R"([{"mesh": 0, "extensions": {"EXT_other": {"anything": -1}}}])";
+    Scene scene;
+    load(scene, "t.gltf", g.text());
+    EXPECT_EQ(scene.triangles.size(), 1u);
+}
+
+// Debian's assimp-testmodels holds one file per type a value can have wrong.
+TEST(GltfLoader, AssimpWrongTypesAreRefused) {
+    const std::string folder = "/usr/share/assimp/models/glTF2/wrongTypes/";
+    if (!std::filesystem::exists(folder)) {
+        GTEST_SKIP() << "no " << folder << " (Debian package assimp-testmodels)";
+    }
+    const std::pair<const char*, const char*> files[] = {
+        {"badArray.gltf", "/meshes/0/primitives: must be an array, not an object"},
+        {"badObject.gltf", "/materials/0/pbrMetallicRoughness: must be an object, not an array"},
+        {"badUint.gltf", "/materials/0/pbrMetallicRoughness/baseColorTexture/index: must be a non-negative integer, not -1"},
+        {"badNumber.gltf", "/materials/0/normalTexture/scale: must be a number, not a string"},
+        {"badString.gltf", "/scenes/0/name: must be a string, not a number"},
+        {"badExtension.gltf",
+         "/materials/0/pbrMetallicRoughness/baseColorTexture/extensions/KHR_texture_transform: must be an object, not a string"},
+    };
+    for (const auto& [name, message] : files) {
+        std::ifstream in(folder + name, std::ios::binary);
+        std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        EXPECT_EQ(errorOf(folder + name, bytes), folder + name + ": " + message);
+    }
+}
+
 // ---- Files with nothing to render -----------------------------------------------------------------
 
 TEST(GltfLoader, NoTrianglesIsAnErrorThatSaysWhy) {
@@ -338,7 +433,7 @@ TEST(GltfLoader, NoTrianglesIsAnErrorThatSaysWhy) {
     }
     {
         Gltf g;
-        g.parts["meshes"] = R"([{"primitives": {"attributes": {"POSITION": 0}}}])";
+        g.parts["meshes"] = R"([{"primitives": []}])";
         EXPECT_EQ(errorOf("n.gltf", g.text()), none + "its meshes have no primitives");
     }
     {

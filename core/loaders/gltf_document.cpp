@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/loaders/gltf_schema.h"
 #include "core/system/error.h"
 
 namespace photon {
@@ -172,6 +173,7 @@ GltfDocument prepareGltf(const std::string& path, const std::string& bytes) {
     if (isGltf1(root)) {
         throw InputError(path + ": a glTF 1.0 file; Photon reads glTF 2.0");
     }
+    checkGltfTypes(path, root);
     bool changed = false;
     if (uses(root, "EXT_meshopt_compression")) {
         changed |= replaceFallbackBuffers(root, doc.fallbackBuffers);

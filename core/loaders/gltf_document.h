@@ -3,6 +3,7 @@
 // place), and EXT_meshopt_compression's fallback buffer, which has a length and no data. This
 // pre-pass rewrites exactly those in the JSON (the binary chunk is kept as it is), and says plainly
 // when a file is glTF 1.0, which tinygltf reports as "Invalid glTF binary" or as an empty model.
+// It also refuses, by name, a value of the wrong type (gltf_schema.h), which tinygltf passes over.
 #pragma once
 
 #include <set>
@@ -16,7 +17,8 @@ struct GltfDocument {
     std::set<int> fallbackBuffers;     // EXT_meshopt_compression fallbacks, now one byte each
 };
 
-// Throws InputError "<path>: <reason>" for glTF 1.0; anything else tinygltf reports itself.
+// Throws InputError "<path>: <reason>" or "<path>: <JSON pointer>: <reason>" for what the comment
+// above names; anything else tinygltf reports itself.
 GltfDocument prepareGltf(const std::string& path, const std::string& bytes);
 
 }  // namespace photon
