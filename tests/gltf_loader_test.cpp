@@ -312,6 +312,69 @@ TEST(GltfLoader, BadFilesNameTheJsonPointerAndTheReason) {
 
 // ---- What the pre-pass refuses (gltf_document.cpp, gltf_schema.cpp) --------------------------------
 
+// The glTF of `g` with its one buffer given this uri and byteLength.
+std::string withBuffer(const Gltf& g, const std::string& uri, std::size_t byteLength) {
+    std::string text = g.text();
+    std::size_t begin = text.find(R"("buffers": [)");
+    std::size_t end = text.find("}]", begin) + 2;
+    return text.replace(begin, end - begin,
+                        R"("buffers": [{"byteLength": )" + std::to_string(byteLength) + R"(, "uri": ")" + uri + "\"}]");
+}
+
+TEST(GltfLoader, DataUrisAreCheckedAndNeverQuotedWhole) {
+    Gltf g;
+    const std::string data = g.data();
+    const std::string prefix = "data:application/octet-stream;base64,";
+    const std::string where = "b.gltf: /buffers/0/uri: ";
+    EXPECT_EQ(errorOf("b.gltf", withBuffer(g, prefix + base64(data), data.size() + 1)),
+              where + "the data URI holds " + std::to_string(data.size()) + " bytes, byteLength says " +
+                  std::to_string(data.size() + 1));
+    EXPECT_EQ(errorOf("b.gltf", withBuffer(g, "data:application/octet-stream," + base64(data), data.size())),
+              where + "a data URI must be base64 (data:...;base64,...)");
+    std::string bad = prefix + base64(data);
+    bad[prefix.size() + 10] = '!';
+    EXPECT_EQ(errorOf("b.gltf", withBuffer(g, bad, data.size())),
+              where + "the data URI's base64 has a bad character '!' at byte " + std::to_string(prefix.size() + 10));
+    EXPECT_EQ(errorOf("b.gltf", withBuffer(g, prefix + "QUJD" + "Q", 3)), where + "the data URI's base64 ends in the middle of a byte");
+    EXPECT_EQ(errorOf("b.gltf", withBuffer(g, prefix, 1)), where + "the data URI holds no bytes");
+    // Megabytes of data URI: the message stays one short line (tinygltf's quoted all of it).
+    std::string big = data + std::string(3 << 20, '\x7f');
+    std::string bigUri = prefix + base64(big);
+    std::string e = errorOf("b.gltf", withBuffer(g, bigUri, big.size() + 1));
+    EXPECT_EQ(e, where + "the data URI holds " + std::to_string(big.size()) + " bytes, byteLength says " +
+                     std::to_string(big.size() + 1));
+    bigUri[bigUri.size() / 2] = '#';
+    e = errorOf("b.gltf", withBuffer(g, bigUri, big.size()));
+    EXPECT_EQ(e, where + "the data URI's base64 has a bad character '#' at byte " + std::to_string(bigUri.size() / 2));
+    e = errorOf("b.gltf", withBuffer(g, "data:application/octet-stream," + std::string(4 << 20, 'A'), big.size()));
+    EXPECT_EQ(e, where + "a data URI must be base64 (data:...;base64,...)");
+    EXPECT_LT(e.size(), 1000u);
+    // What tinygltf itself says is cut too: here nlohmann's syntax error, which quotes the string.
+    bigUri[bigUri.size() / 2] = '\x01';
+    e = errorOf("b.gltf", withBuffer(g, bigUri, big.size()));
+    EXPECT_EQ(e.rfind("b.gltf: ", 0), 0u) << e.substr(0, 1000);
+    EXPECT_LT(e.size(), 1000u);
+    {
+        Gltf image;
+        image.parts["images"] = R"([{"uri": "data:image/png;base64,iVBOR w0KGgo="}])";
+        image.parts["textures"] = R"([{"source": 0}])";
+        EXPECT_EQ(errorOf("i.gltf", image.text()), "i.gltf: /images/0/uri: the data URI's base64 has a bad character ' ' at byte 27");
+    }
+    // Good data URIs that tinygltf would not take as they are: another media type (or none), no
+    // padding, more bytes than byteLength (the buffer is their first byteLength).
+    for (const std::string& uri : {"data:;base64," + base64(data), "DATA:application/octet-stream;base64," + base64(data),
+                                   "data:application/octet-stream;base64," + base64(data + "xyzw")}) {
+        Scene scene;
+        load(scene, "b.gltf", withBuffer(g, uri, data.size()));
+        EXPECT_EQ(scene.triangles.size(), 1u) << uri.substr(0, 40);
+    }
+    std::string unpadded = base64(data + "xy");
+    unpadded.erase(unpadded.find('='));
+    Scene scene;
+    load(scene, "b.gltf", withBuffer(g, "data:application/gltf-buffer;base64," + unpadded, data.size() + 2));
+    EXPECT_EQ(scene.triangles.size(), 1u);
+}
+
 TEST(GltfLoader, ValuesOfTheWrongTypeAreRefusedByPointer) {
     struct Case {
         const char* member;
@@ -402,6 +465,37 @@ TEST(GltfLoader, AssimpWrongTypesAreRefused) {
         std::ifstream in(folder + name, std::ios::binary);
         std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
         EXPECT_EQ(errorOf(folder + name, bytes), folder + name + ": " + message);
+    }
+}
+
+TEST(GltfLoader, AbsoluteAndRemoteUrisAreRefusedByName) {
+    Gltf g;
+    const std::string data = g.data();
+    const std::string reason = ": absolute and remote URIs are not read; name a file relative to the model's folder";
+    // JSON text: a backslash is written \\ in it.
+    const std::pair<const char*, const char*> uris[] = {
+        {"http://example.com/a.bin", "'http://example.com/a.bin'"},
+        {"file:///tmp/a.bin", "'file:///tmp/a.bin'"},
+        {"/tmp/a.bin", "'/tmp/a.bin'"},
+        {"C:\\\\x.bin", "'C:\\x.bin'"},
+        {"c:x.bin", "'c:x.bin'"},
+        {"\\\\\\\\server\\\\a.bin", "'\\\\server\\a.bin'"},
+        {"https://example.com/a-very-long-name-for-a-buffer-file-that-goes-on.bin", "'https://example.com/a-very-long-name-for...'"},
+    };
+    for (const auto& [uri, shown] : uris) {
+        EXPECT_EQ(errorOf("d/b.gltf", withBuffer(g, uri, data.size())), std::string("d/b.gltf: /buffers/0/uri: ") + shown + reason);
+    }
+    Gltf image;
+    image.parts["images"] = R"([{"uri": "data:image/png;base64,iVBORw0KGgo="}, {"uri": "https://example.com/t.png"}])";
+    EXPECT_EQ(errorOf("i.gltf", image.text()), "i.gltf: /images/1/uri: 'https://example.com/t.png'" + reason);
+    // Relative names load, Windows separators and a colon after the first segment included.
+    Files files;
+    files.files["d/sub/a.bin"] = data;
+    files.files["d/sub/a:b.bin"] = data;
+    for (const char* uri : {"sub\\\\a.bin", "sub/a.bin", "./sub/a:b.bin", "sub/a:b.bin"}) {
+        Scene scene;
+        load(scene, "d/b.gltf", withBuffer(g, uri, data.size()), files);
+        EXPECT_EQ(scene.triangles.size(), 1u) << uri;
     }
 }
 
