@@ -499,6 +499,17 @@ TEST(GltfLoader, AbsoluteAndRemoteUrisAreRefusedByName) {
     }
 }
 
+TEST(GltfLoader, EmptyAndTruncatedFilesSaySo) {
+    EXPECT_EQ(errorOf("e.gltf", ""), "e.gltf: empty file");
+    EXPECT_EQ(errorOf("e.glb", ""), "e.glb: empty file");
+    const std::string shortHeader = ": a binary glTF (.glb) shorter than its 20-byte header";
+    EXPECT_EQ(errorOf("e.glb", std::string("glTF\x02\0\0\0", 8)), "e.glb" + shortHeader);
+    EXPECT_EQ(errorOf("e.glb", std::string("glTF\x02\0\0\0\x40\0\0\0JSON", 16)), "e.glb" + shortHeader);
+    EXPECT_EQ(errorOf("e.glb", "glT"), "e.glb" + shortHeader);
+    EXPECT_EQ(errorOf("e.gltf", "glTF"), "e.gltf" + shortHeader);  // the magic says .glb, whatever the name
+    EXPECT_EQ(errorOf("e.gltf", " \n").rfind("e.gltf: ", 0), 0u);
+}
+
 // ---- Files with nothing to render -----------------------------------------------------------------
 
 TEST(GltfLoader, NoTrianglesIsAnErrorThatSaysWhy) {

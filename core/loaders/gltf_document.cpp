@@ -271,12 +271,16 @@ GltfDocument prepareGltf(const std::string& path, const std::string& bytes) {
     GltfDocument doc;
     doc.bytes = bytes;
     doc.binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
+    if (bytes.empty()) {
+        throw InputError(path + ": empty file");  // tinygltf: "JSON string too short."
+    }
+    bool glbName = path.size() >= 4 && startsWithNoCase(path.substr(path.size() - 4), ".glb");
+    if (bytes.size() < 20 && (doc.binary || (glbName && std::string("glTF").rfind(bytes, 0) == 0))) {
+        throw InputError(path + ": a binary glTF (.glb) shorter than its 20-byte header");
+    }
     std::string text = bytes;
     std::size_t jsonEnd = 0;
     if (doc.binary) {
-        if (bytes.size() < 20) {
-            return doc;  // tinygltf says what is wrong with it
-        }
         std::uint32_t version = word(bytes, 4);
         if (version == 1) {
             throw InputError(path + ": a glTF 1.0 binary file; Photon reads glTF 2.0");
