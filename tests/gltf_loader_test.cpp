@@ -310,6 +310,206 @@ TEST(GltfLoader, BadFilesNameTheJsonPointerAndTheReason) {
     EXPECT_EQ(errorOf("b.gltf", "{not json").rfind("b.gltf: ", 0), 0u);
 }
 
+// ---- What the pre-pass refuses (gltf_document.cpp, gltf_schema.cpp) --------------------------------
+
+// The glTF of `g` with its one buffer given this uri and byteLength.
+std::string withBuffer(const Gltf& g, const std::string& uri, std::size_t byteLength) {
+    std::string text = g.text();
+    std::size_t begin = text.find(R"("buffers": [)");
+    std::size_t end = text.find("}]", begin) + 2;
+    return text.replace(begin, end - begin,
+                        R"("buffers": [{"byteLength": )" + std::to_string(byteLength) + R"(, "uri": ")" + uri + "\"}]");
+}
+
+TEST(GltfLoader, DataUrisAreCheckedAndNeverQuotedWhole) {
+    Gltf g;
+    const std::string data = g.data();
+    const std::string prefix = "data:application/octet-stream;base64,";
+    const std::string where = "b.gltf: /buffers/0/uri: ";
+    EXPECT_EQ(errorOf("b.gltf", withBuffer(g, prefix + base64(data), data.size() + 1)),
+              where + "the data URI holds " + std::to_string(data.size()) + " bytes, byteLength says " +
+                  std::to_string(data.size() + 1));
+    EXPECT_EQ(errorOf("b.gltf", withBuffer(g, "data:application/octet-stream," + base64(data), data.size())),
+              where + "a data URI must be base64 (data:...;base64,...)");
+    std::string bad = prefix + base64(data);
+    bad[prefix.size() + 10] = '!';
+    EXPECT_EQ(errorOf("b.gltf", withBuffer(g, bad, data.size())),
+              where + "the data URI's base64 has a bad character '!' at byte " + std::to_string(prefix.size() + 10));
+    EXPECT_EQ(errorOf("b.gltf", withBuffer(g, prefix + "QUJD" + "Q", 3)), where + "the data URI's base64 ends in the middle of a byte");
+    EXPECT_EQ(errorOf("b.gltf", withBuffer(g, prefix, 1)), where + "the data URI holds no bytes");
+    // Megabytes of data URI: the message stays one short line (tinygltf's quoted all of it).
+    std::string big = data + std::string(3 << 20, '\x7f');
+    std::string bigUri = prefix + base64(big);
+    std::string e = errorOf("b.gltf", withBuffer(g, bigUri, big.size() + 1));
+    EXPECT_EQ(e, where + "the data URI holds " + std::to_string(big.size()) + " bytes, byteLength says " +
+                     std::to_string(big.size() + 1));
+    bigUri[bigUri.size() / 2] = '#';
+    e = errorOf("b.gltf", withBuffer(g, bigUri, big.size()));
+    EXPECT_EQ(e, where + "the data URI's base64 has a bad character '#' at byte " + std::to_string(bigUri.size() / 2));
+    e = errorOf("b.gltf", withBuffer(g, "data:application/octet-stream," + std::string(4 << 20, 'A'), big.size()));
+    EXPECT_EQ(e, where + "a data URI must be base64 (data:...;base64,...)");
+    EXPECT_LT(e.size(), 1000u);
+    // What tinygltf itself says is cut too: here nlohmann's syntax error, which quotes the string.
+    bigUri[bigUri.size() / 2] = '\x01';
+    e = errorOf("b.gltf", withBuffer(g, bigUri, big.size()));
+    EXPECT_EQ(e.rfind("b.gltf: ", 0), 0u) << e.substr(0, 1000);
+    EXPECT_LT(e.size(), 1000u);
+    {
+        Gltf image;
+        image.parts["images"] = R"([{"uri": "data:image/png;base64,iVBOR w0KGgo="}])";
+        image.parts["textures"] = R"([{"source": 0}])";
+        EXPECT_EQ(errorOf("i.gltf", image.text()), "i.gltf: /images/0/uri: the data URI's base64 has a bad character ' ' at byte 27");
+    }
+    // Good data URIs that tinygltf would not take as they are: another media type (or none), no
+    // padding, more bytes than byteLength (the buffer is their first byteLength).
+    for (const std::string& uri : {"data:;base64," + base64(data), "DATA:application/octet-stream;base64," + base64(data),
+                                   "data:application/octet-stream;base64," + base64(data + "xyzw")}) {
+        Scene scene;
+        load(scene, "b.gltf", withBuffer(g, uri, data.size()));
+        EXPECT_EQ(scene.triangles.size(), 1u) << uri.substr(0, 40);
+    }
+    std::string unpadded = base64(data + "xy");
+    unpadded.erase(unpadded.find('='));
+    Scene scene;
+    load(scene, "b.gltf", withBuffer(g, "data:application/gltf-buffer;base64," + unpadded, data.size() + 2));
+    EXPECT_EQ(scene.triangles.size(), 1u);
+}
+
+TEST(GltfLoader, ValuesOfTheWrongTypeAreRefusedByPointer) {
+    struct Case {
+        const char* member;
+        const char* value;
+        const char* message;
+    };
+    const Case cases[] = {
+        {"materials", R"([{"pbrMetallicRoughness": ["not an object"]}])", "/materials/0/pbrMetallicRoughness: must be an object, not an array"},
+        {"materials", R"([{"pbrMetallicRoughness": {"baseColorTexture": {"index": -1}}}])",
+         "/materials/0/pbrMetallicRoughness/baseColorTexture/index: must be a non-negative integer, not -1"},
+        {"materials", R"([{"normalTexture": {"index": 0, "scale": "2"}}])", "/materials/0/normalTexture/scale: must be a number, not a string"},
+        {"materials", R"([{"occlusionTexture": {"index": 0, "strength": null}}])", "/materials/0/occlusionTexture/strength: must be a number, not null"},
+        {"materials", R"([{"doubleSided": 1}])", "/materials/0/doubleSided: must be a boolean, not a number"},
+        {"materials", R"([{"emissiveFactor": [1, "0", 0]}])", "/materials/0/emissiveFactor/1: must be a number, not a string"},
+        {"materials", R"([{"emissiveTexture": {"index": 0, "extensions": {"KHR_texture_transform": "Not an object"}}}])",
+         "/materials/0/emissiveTexture/extensions/KHR_texture_transform: must be an object, not a string"},
+        {"materials", R"([{"emissiveTexture": {"index": 0, "extensions": {"KHR_texture_transform": {"texCoord": 1.5}}}}])",
+         "/materials/0/emissiveTexture/extensions/KHR_texture_transform/texCoord: must be a non-negative integer, not 1.5"},
+        {"materials", R"([{"extensions": {"KHR_materials_ior": {"ior": "1.5"}}}])", "/materials/0/extensions/KHR_materials_ior/ior: must be a number, not a string"},
+        {"materials", R"([{"extensions": {"KHR_materials_volume": {"attenuationColor": 1}}}])",
+         "/materials/0/extensions/KHR_materials_volume/attenuationColor: must be an array, not a number"},
+        {"materials", R"([{"extensions": {"KHR_materials_transmission": {"transmissionFactor": true}}}])",
+         "/materials/0/extensions/KHR_materials_transmission/transmissionFactor: must be a number, not a boolean"},
+        {"materials", R"([{"extensions": {"KHR_materials_emissive_strength": []}}])",
+         "/materials/0/extensions/KHR_materials_emissive_strength: must be an object, not an array"},
+        {"materials", R"([{"extensions": []}])", "/materials/0/extensions: must be an object, not an array"},
+        {"materials", R"([{"name": 42}])", "/materials/0/name: must be a string, not a number"},
+        {"meshes", R"([{"primitives": {"attributes": {"POSITION": 0}}}])", "/meshes/0/primitives: must be an array, not an object"},
+        {"meshes", R"([{"primitives": [{"attributes": {"POSITION": "0"}}]}])", "/meshes/0/primitives/0/attributes/POSITION: must be a non-negative integer, not a string"},
+        {"meshes", R"([{"primitives": [{"attributes": {"POSITION": 0}, "targets": [{"a/b~": -2}]}]}])",
+         "/meshes/0/primitives/0/targets/0/a~1b~0: must be a non-negative integer, not -2"},
+        {"nodes", R"([{"mesh": 0, "matrix": {}}])", "/nodes/0/matrix: must be an array, not an object"},
+        {"nodes", R"([{"mesh": 0, "children": [1, 2.5]}])", "/nodes/0/children/1: must be a non-negative integer, not 2.5"},
+        {"nodes", R"([{"mesh": 0.0}])", "/nodes/0/mesh: must be a non-negative integer, not 0.0"},  // tinygltf: no mesh
+        {"nodes", R"([{"mesh": 0, "extensions": {"KHR_lights_punctual": {"light": -1}}}])",
+         "/nodes/0/extensions/KHR_lights_punctual/light: must be a non-negative integer, not -1"},
+        {"extensions", R"({"KHR_lights_punctual": {"lights": [{"type": "point", "intensity": "bright"}]}})",
+         "/extensions/KHR_lights_punctual/lights/0/intensity: must be a number, not a string"},
+        {"scene", "\"0\"", "/scene: must be a non-negative integer, not a string"},
+        {"scenes", R"([{"nodes": 0}])", "/scenes/0/nodes: must be an array, not a number"},
+        {"asset", R"({"version": 2})", "/asset/version: must be a string, not a number"},
+        {"extensionsUsed", R"([7])", "/extensionsUsed/0: must be a string, not a number"},
+        {"cameras", R"([{"type": "perspective", "perspective": {"yfov": "wide"}}])", "/cameras/0/perspective/yfov: must be a number, not a string"},
+        {"samplers", R"([{"wrapS": -10497}])", "/samplers/0/wrapS: must be a non-negative integer, not -10497"},
+        {"textures", R"([{"source": 0.5}])", "/textures/0/source: must be a non-negative integer, not 0.5"},
+        {"images", R"([{"uri": 5}])", "/images/0/uri: must be a string, not a number"},
+        {"skins", R"([{"joints": [0, -1]}])", "/skins/0/joints/1: must be a non-negative integer, not -1"},
+        {"animations", R"([{"channels": [{"sampler": 0, "target": {"node": 0, "path": 3}}]}])",
+         "/animations/0/channels/0/target/path: must be a string, not a number"},
+        {"animations", R"([{"samplers": [{"input": 0, "output": 1, "interpolation": false}]}])",
+         "/animations/0/samplers/0/interpolation: must be a string, not a boolean"},
+    };
+    for (const Case& c : cases) {
+        Gltf g;
+        g.parts[c.member] = c.value;
+        EXPECT_EQ(errorOf("t.gltf", g.text()), std::string("t.gltf: ") + c.message) << c.value;
+    }
+    // The accessors the helper writes.
+    Gltf g;
+    std::string text = g.text();
+    text.replace(text.find(R"("count": 3)"), 10, R"("count": -3)");
+    EXPECT_EQ(errorOf("t.gltf", text), "t.gltf: /accessors/0/count: must be a non-negative integer, not -3");
+    // Unknown properties are glTF's to allow, whatever their type; extras are anything; the loader
+    // checks what is in range.
+    g.parts["materials"] = R"([{"unknown": [1], "extras": 5, "pbrMetallicRoughness": {"metallicFactor": 0, "extras": "x"}}])";
+    g.parts["nodes"] = R"([{"mesh": 0, "extensions": {"EXT_other": {"anything": -1}}}])";
+    Scene scene;
+    load(scene, "t.gltf", g.text());
+    EXPECT_EQ(scene.triangles.size(), 1u);
+}
+
+// Debian's assimp-testmodels holds one file per type a value can have wrong.
+TEST(GltfLoader, AssimpWrongTypesAreRefused) {
+    const std::string folder = "/usr/share/assimp/models/glTF2/wrongTypes/";
+    if (!std::filesystem::exists(folder)) {
+        GTEST_SKIP() << "no " << folder << " (Debian package assimp-testmodels)";
+    }
+    const std::pair<const char*, const char*> files[] = {
+        {"badArray.gltf", "/meshes/0/primitives: must be an array, not an object"},
+        {"badObject.gltf", "/materials/0/pbrMetallicRoughness: must be an object, not an array"},
+        {"badUint.gltf", "/materials/0/pbrMetallicRoughness/baseColorTexture/index: must be a non-negative integer, not -1"},
+        {"badNumber.gltf", "/materials/0/normalTexture/scale: must be a number, not a string"},
+        {"badString.gltf", "/scenes/0/name: must be a string, not a number"},
+        {"badExtension.gltf",
+         "/materials/0/pbrMetallicRoughness/baseColorTexture/extensions/KHR_texture_transform: must be an object, not a string"},
+    };
+    for (const auto& [name, message] : files) {
+        std::ifstream in(folder + name, std::ios::binary);
+        std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        EXPECT_EQ(errorOf(folder + name, bytes), folder + name + ": " + message);
+    }
+}
+
+TEST(GltfLoader, AbsoluteAndRemoteUrisAreRefusedByName) {
+    Gltf g;
+    const std::string data = g.data();
+    const std::string reason = ": absolute and remote URIs are not read; name a file relative to the model's folder";
+    // JSON text: a backslash is written \\ in it.
+    const std::pair<const char*, const char*> uris[] = {
+        {"http://example.com/a.bin", "'http://example.com/a.bin'"},
+        {"file:///tmp/a.bin", "'file:///tmp/a.bin'"},
+        {"/tmp/a.bin", "'/tmp/a.bin'"},
+        {"C:\\\\x.bin", "'C:\\x.bin'"},
+        {"c:x.bin", "'c:x.bin'"},
+        {"\\\\\\\\server\\\\a.bin", "'\\\\server\\a.bin'"},
+        {"https://example.com/a-very-long-name-for-a-buffer-file-that-goes-on.bin", "'https://example.com/a-very-long-name-for...'"},
+    };
+    for (const auto& [uri, shown] : uris) {
+        EXPECT_EQ(errorOf("d/b.gltf", withBuffer(g, uri, data.size())), std::string("d/b.gltf: /buffers/0/uri: ") + shown + reason);
+    }
+    Gltf image;
+    image.parts["images"] = R"([{"uri": "data:image/png;base64,iVBORw0KGgo="}, {"uri": "https://example.com/t.png"}])";
+    EXPECT_EQ(errorOf("i.gltf", image.text()), "i.gltf: /images/1/uri: 'https://example.com/t.png'" + reason);
+    // Relative names load, Windows separators and a colon after the first segment included.
+    Files files;
+    files.files["d/sub/a.bin"] = data;
+    files.files["d/sub/a:b.bin"] = data;
+    for (const char* uri : {"sub\\\\a.bin", "sub/a.bin", "./sub/a:b.bin", "sub/a:b.bin"}) {
+        Scene scene;
+        load(scene, "d/b.gltf", withBuffer(g, uri, data.size()), files);
+        EXPECT_EQ(scene.triangles.size(), 1u) << uri;
+    }
+}
+
+TEST(GltfLoader, EmptyAndTruncatedFilesSaySo) {
+    EXPECT_EQ(errorOf("e.gltf", ""), "e.gltf: empty file");
+    EXPECT_EQ(errorOf("e.glb", ""), "e.glb: empty file");
+    const std::string shortHeader = ": a binary glTF (.glb) shorter than its 20-byte header";
+    EXPECT_EQ(errorOf("e.glb", std::string("glTF\x02\0\0\0", 8)), "e.glb" + shortHeader);
+    EXPECT_EQ(errorOf("e.glb", std::string("glTF\x02\0\0\0\x40\0\0\0JSON", 16)), "e.glb" + shortHeader);
+    EXPECT_EQ(errorOf("e.glb", "glT"), "e.glb" + shortHeader);
+    EXPECT_EQ(errorOf("e.gltf", "glTF"), "e.gltf" + shortHeader);  // the magic says .glb, whatever the name
+    EXPECT_EQ(errorOf("e.gltf", " \n").rfind("e.gltf: ", 0), 0u);
+}
+
 // ---- Files with nothing to render -----------------------------------------------------------------
 
 TEST(GltfLoader, NoTrianglesIsAnErrorThatSaysWhy) {
@@ -338,7 +538,7 @@ TEST(GltfLoader, NoTrianglesIsAnErrorThatSaysWhy) {
     }
     {
         Gltf g;
-        g.parts["meshes"] = R"([{"primitives": {"attributes": {"POSITION": 0}}}])";
+        g.parts["meshes"] = R"([{"primitives": []}])";
         EXPECT_EQ(errorOf("n.gltf", g.text()), none + "its meshes have no primitives");
     }
     {

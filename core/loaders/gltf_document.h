@@ -3,6 +3,10 @@
 // place), and EXT_meshopt_compression's fallback buffer, which has a length and no data. This
 // pre-pass rewrites exactly those in the JSON (the binary chunk is kept as it is), and says plainly
 // when a file is glTF 1.0, which tinygltf reports as "Invalid glTF binary" or as an empty model.
+// It also refuses, by name, what tinygltf would pass over or report unreadably: an empty file or a
+// .glb shorter than its header, a value of the wrong type (gltf_schema.h), a buffer or image URI
+// that is absolute or remote, and a data URI that is not good base64 or holds fewer bytes than its
+// buffer's byteLength (tinygltf's message would quote the whole URI, megabytes on one line).
 #pragma once
 
 #include <set>
@@ -16,7 +20,8 @@ struct GltfDocument {
     std::set<int> fallbackBuffers;     // EXT_meshopt_compression fallbacks, now one byte each
 };
 
-// Throws InputError "<path>: <reason>" for glTF 1.0; anything else tinygltf reports itself.
+// Throws InputError "<path>: <reason>" or "<path>: <JSON pointer>: <reason>" for what the comment
+// above names; anything else tinygltf reports itself.
 GltfDocument prepareGltf(const std::string& path, const std::string& bytes);
 
 }  // namespace photon

@@ -30,6 +30,7 @@
 namespace photon {
 namespace {
 
+constexpr std::size_t kTinygltfMessageMax = 300;  // bytes of tinygltf's message that an error quotes
 constexpr double kWattsPerLumen = 1.0 / 683.0;  // glTF's photometric units taken at 555 nm
 
 // The extensions a file may require: every other one in extensionsRequired is refused by name.
@@ -946,7 +947,11 @@ ModelExtras addGltfModel(Scene& scene, const std::string& path, const std::strin
         throw InputError(fs.error);
     }
     if (!ok) {
-        std::string first = err.substr(0, err.find('\n'));
+        // tinygltf's first line, cut: some of its messages quote a value of the file whole.
+        std::string first = printable(err.substr(0, std::min(err.find('\n'), kTinygltfMessageMax)));
+        if (err.find('\n') > kTinygltfMessageMax && err.size() > kTinygltfMessageMax) {
+            first += "...";
+        }
         throw InputError(path + ": " + (first.empty() ? std::string("not a glTF file") : first));
     }
     for (std::size_t i = 0; i < loader.model.extensionsRequired.size(); ++i) {
