@@ -5,7 +5,8 @@
 # diffuse floor). Each run must either succeed with an image that is finite and not all black, or
 # be refused with exit 2 and one line that names the file (or the file of its folder that is at
 # fault: a missing MTL, image or buffer is named itself, docs/scenes.md). A crash, a signal, a hang (timeout), a
-# runtime failure, a NaN or a black image fails the test.
+# runtime failure, a NaN or a black image fails the test, and so does a nearly black one without
+# the warning that says so.
 #   tests/corpus_test.sh <photon-render> [--list]
 # --list prints the files Photon refuses, with the reasons, as the Markdown list in docs/scenes.md.
 # The corpus is $PHOTON_CORPUS (default /usr/share/assimp/models); without it the test is skipped
@@ -49,8 +50,8 @@ check_one() {
     lines=$(wc -l <"$dir/$case.err")
     if [ "$code" -eq 0 ]; then
       local why
-      if why=$(python3 - "$dir/$case.pfm" 2>&1 <<'EOF'
-import array, math, sys
+      if why=$(python3 - "$dir/$case.pfm" "$dir/$case.json" 2>&1 <<'EOF'
+import array, json, math, sys
 data = open(sys.argv[1], 'rb').read()
 kind, size, scale, pixels = data.split(b'\n', 3)
 values = array.array('f'); values.frombytes(pixels)
@@ -58,6 +59,12 @@ if not values or not all(math.isfinite(v) for v in values):
     sys.exit('a value that is not finite')
 if not any(v > 0.0 for v in values):
     sys.exit('the image is all black')
+# Nearly black (fewer than 10% of pixels at 1% of white, core/image/image.h): only with the
+# warning that says so.
+pixels = [values[i:i + 3] for i in range(0, len(values), 3)]
+lit = sum(1 for p in pixels if max(p) >= 0.01) / len(pixels)
+if lit < 0.1 and not any('nearly black' in w for w in json.load(open(sys.argv[2])).get('warnings', [])):
+    sys.exit('nearly black (%.1f%% of pixels show) without a warning' % (100 * lit))
 EOF
       ); then
         echo "ok $case $rel" >>"$out"

@@ -131,6 +131,38 @@ TEST(ObjLoader, MtllibReadsABackslashAsASeparator) {
     expectNear(spaced.materials[spaced.triangles[0].material].albedo, glm::vec3(0.0f, 0.0f, 1.0f), 1e-6f);
 }
 
+// A model's emissive surfaces light it alone only if they carry most of the power (issue 38:
+// ClearCoatTest's glowing labels dropped the studio lights and left the spheres black).
+TEST(ObjLoader, WeakEmittersKeepTheStudioLightsStrongOnesReplaceThem) {
+    Files files;
+    // A 10 × 10 floor and a 0.1 × 0.1 label of radiance 1; then the label as a bright panel.
+    files.files["weak.mtl"] = "newmtl floor\nKd 0.8 0.8 0.8\nnewmtl label\nKd 0 0 0\nKe 1 1 1\n";
+    files.files["strong.mtl"] = "newmtl floor\nKd 0.8 0.8 0.8\nnewmtl label\nKd 0 0 0\nKe 50 50 50\n";
+    auto model = [](const char* mtl, float labelSize) {
+        char text[512];
+        std::snprintf(text, sizeof text,
+                      "mtllib %s\nv -5 0 -5\nv 5 0 -5\nv 5 0 5\nv -5 0 5\nv 0 1 0\nv %g 1 0\nv %g 1 %g\nv 0 1 %g\n"
+                      "usemtl floor\nf 1 4 3 2\nusemtl label\nf 5 8 7 6\n",
+                      mtl, labelSize, labelSize, labelSize, labelSize);
+        return std::string(text);
+    };
+    auto lights = [](const Scene& scene) {
+        std::vector<std::uint32_t> types;
+        for (const Light& l : scene.lights) {
+            types.push_back(l.type);
+        }
+        return types;
+    };
+    Scene weak = loadModelScene("weak.obj", model("weak.mtl", 0.1f), files.reader());
+    EXPECT_NE(weak.environmentLight, NONE) << "the studio environment lights a model with a glowing label";
+    std::vector<std::uint32_t> w = lights(weak);
+    EXPECT_NE(std::find(w.begin(), w.end(), LIGHT_DIRECTIONAL), w.end()) << "and the sun";
+    EXPECT_NE(std::find(w.begin(), w.end(), LIGHT_TRIANGLES), w.end()) << "the label still emits";
+    Scene strong = loadModelScene("strong.obj", model("strong.mtl", 8.0f), files.reader());
+    EXPECT_EQ(strong.environmentLight, NONE) << "a panel of 50 over 64 m² outshines the studio: its light alone";
+    EXPECT_EQ(lights(strong), std::vector<std::uint32_t>{LIGHT_TRIANGLES});
+}
+
 // A 16-bit PPM is refused by name: stb_image's conversion of it to four channels overflows its
 // buffer (the render fuzzer found it through an MTL's map_Kd).
 TEST(ObjLoader, SixteenBitImagesOtherThanPngAreRefused) {

@@ -222,9 +222,21 @@ void helpSection() {
 
 }  // namespace
 
+HudLayout hudLayout(float windowWidth, float windowHeight) {
+    constexpr float kMargin = 8.0f;
+    HudLayout layout;
+    layout.width = std::min(340.0f, std::max(240.0f, 0.36f * windowWidth));
+    layout.maxHeight = std::max(100.0f, windowHeight - 2.0f * kMargin);
+    layout.renderOpen = windowHeight >= 720.0f;
+    return layout;
+}
+
 void buildHud(ViewState& state, LightEditor& lights, const HudInfo& info) {
+    ImVec2 display = ImGui::GetIO().DisplaySize;
+    HudLayout layout = hudLayout(display.x, display.y);
     ImGui::SetNextWindowPos(ImVec2(8.0f, 8.0f), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(340.0f, 0.0f), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(layout.width, 0.0f), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSizeConstraints(ImVec2(200.0f, 0.0f), ImVec2(display.x, layout.maxHeight));
     ImGui::SetNextWindowBgAlpha(0.8f);
     if (!ImGui::Begin("Photon")) {
         ImGui::End();
@@ -232,7 +244,8 @@ void buildHud(ViewState& state, LightEditor& lights, const HudInfo& info) {
     }
     ImGui::PushItemWidth(-130.0f);  // room for the labels
     statsSection(info);
-    if (ImGui::CollapsingHeader("Render", ImGuiTreeNodeFlags_DefaultOpen)) {
+    ImGui::SetNextItemOpen(layout.renderOpen, ImGuiCond_FirstUseEver);
+    if (ImGui::CollapsingHeader("Render")) {
         renderSection(state, info);
     }
     if (ImGui::CollapsingHeader("Lights")) {

@@ -27,6 +27,17 @@ struct HudInfo {
     bool windowed = true;
 };
 
+// Where the panel starts in a window of this size: 340 px wide where there is room, never more
+// than 36% of the window (at least 240 px), never taller than the window (it scrolls), and the
+// Render section open only in a window tall enough to show it whole (at 640×480 the open panel
+// covered 55% of the image and was cut off at the bottom).
+struct HudLayout {
+    float width = 340.0f;
+    float maxHeight = 0.0f;
+    bool renderOpen = true;
+};
+HudLayout hudLayout(float windowWidth, float windowHeight);
+
 // Builds this frame's HUD widgets, editing `state` and moving `lights`.
 void buildHud(ViewState& state, LightEditor& lights, const HudInfo& info);
 
