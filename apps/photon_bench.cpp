@@ -23,7 +23,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "apps/backends.h"
+#include "core/render/devices.h"
 #include "apps/image_writer_bench.h"
 #include "apps/photon_use_bench.h"
 #include "apps/render_options.h"

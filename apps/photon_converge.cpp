@@ -18,7 +18,8 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "apps/backends.h"
+#include "core/frame/scene_settings.h"
+#include "core/render/devices.h"
 #include "apps/orbit_error.h"
 #include "apps/render_options.h"
 #include "core/image/image_error.h"

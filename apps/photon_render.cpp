@@ -16,7 +16,8 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "apps/backends.h"
+#include "core/frame/scene_settings.h"
+#include "core/render/render.h"
 #include "apps/interrupt.h"
 #include "apps/progress.h"
 #include "apps/render_options.h"
@@ -51,8 +52,9 @@ nlohmann::json stageJson(const std::vector<StageTimes>& frames) {
     return stages;
 }
 
-void writeStats(const std::string& path, Backend& backend, const std::vector<StageTimes>& frames, double wallSeconds,
-                const std::vector<std::string>& warnings) {
+// What the device knows at the end of the render; the stage times, wall time and warnings are
+// added once the image is read back.
+nlohmann::json backendStats(Backend& backend) {
     const FrameStats& last = backend.lastFrameStats();
     const RenderSettings& s = backend.settings();
     nlohmann::json j;
@@ -62,13 +64,8 @@ void writeStats(const std::string& path, Backend& backend, const std::vector<Sta
     j["scene_stats"] = sceneStatsJson(backend.scene());
     j["width"] = s.width;
     j["height"] = s.height;
-    j["frames"] = frames.size();
     j["estimator"] = toString(s.estimator);
-    j["wall_seconds"] = wallSeconds;
-    j["stages"] = stageJson(frames);
-    j["warnings"] = warnings;
     PhotonMaps maps = backend.readPhotonMaps();
-    const char* kMapNames[] = {"global", "caustic"};
     for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
         GridStats g = gridStats(maps.cellStart[m]);
         j["photons"][kMapNames[m]] = {{"emitted_paths", last.emitted[m]},
@@ -88,7 +85,7 @@ void writeStats(const std::string& path, Backend& backend, const std::vector<Sta
                             {"photons_hitting_the_scene", last.environmentHits},
                             {"hit_fraction", last.environmentPaths > 0 ? double(last.environmentHits) / last.environmentPaths : 0.0}};
     }
-    writeOutputFile(path, j.dump(2) + "\n", "stats");
+    return j;
 }
 
 int run(int argc, char** argv) {
@@ -155,47 +152,35 @@ int run(int argc, char** argv) {
     for (const std::string& warning : warnings) {
         warn(warning);
     }
-    std::unique_ptr<Backend> backend = createBackend(backendName, backendOptions);
-    choosePhotons(settings, backend->runsOnCpu());
-    backend->setScene(std::move(scene));
-    backend->setSettings(settings);
-    auto start = std::chrono::steady_clock::now();
-    backend->prepare();
-
-    // --time: frames until the time is spent; --frames, given with it, caps them.
-    std::uint32_t maxFrames = timed && !framesGiven ? 0xffffffffu : settings.frames;
-    std::vector<StageTimes> times;
+    RenderJob job;
+    job.backend = backendName;
+    job.device = backendOptions;
+    job.seconds = timed ? seconds : 0.0;
+    job.framesCap = framesGiven;
     ProgressBar progress(timed ? 0 : settings.frames, timed ? seconds : 0.0, !quiet);
-    double elapsed = 0.0;
-    for (std::uint32_t f = 0; f < maxFrames; ++f) {
-        backend->renderFrame();
-        times.push_back(backend->lastFrameStats().ms);
-        elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        progress.update(f + 1, elapsed);
-        if ((timed && elapsed >= seconds) || interruptSignal() != 0) {
-            break;
+    nlohmann::json stats;
+    RenderObserver observer;
+    observer.frame = [&](std::uint32_t frames, double elapsed) { progress.update(frames, elapsed); };
+    observer.cancel = [] { return interruptSignal() != 0; };
+    observer.finished = [&](Backend& backend) {
+        progress.finish();
+        if (!statsPath.empty()) {
+            stats = backendStats(backend);
         }
-    }
-    progress.finish();
+    };
+    RenderResult result = render(std::move(scene), settings, job, observer);
     // Interrupted: what was rendered is written as it would have been at the end.
     int interrupted = interruptSignal();
-    std::uint32_t frames = static_cast<std::uint32_t>(times.size());
-    Image image = backend->image();
-    if (!times.empty()) {
-        times.back()[STAGE_DENOISE] = backend->lastFrameStats().ms[STAGE_DENOISE];  // run by image(), once
-    }
-    double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const Image& image = result.image;
+    std::uint32_t frames = static_cast<std::uint32_t>(result.times.size());
+    double wall = result.seconds;
     // An EXR file gets the image without the denoiser beside the denoised one, and the AOVs.
     std::vector<ExrLayer> layers;
-    Image raw;
-    if (denoises(settings)) {
-        raw = backend->rawImage();
-        layers.push_back({"raw", &raw, "RGB"});
+    if (!result.raw.pixels.empty()) {
+        layers.push_back({"raw", &result.raw, "RGB"});
     }
-    AovImages aovs;
     if (settings.aov) {
-        aovs = aovImages(backend->readAovs(), settings.width, settings.height, frames);
-        for (const ExrLayer& layer : exrLayers(aovs)) {
+        for (const ExrLayer& layer : exrLayers(result.aovs)) {
             layers.push_back(layer);
         }
     }
@@ -209,7 +194,11 @@ int run(int argc, char** argv) {
     }
     writeImage(output, image, settings.exposure, settings.tonemap, layers);
     if (!statsPath.empty()) {
-        writeStats(statsPath, *backend, times, wall, warnings);
+        stats["frames"] = frames;
+        stats["wall_seconds"] = wall;
+        stats["stages"] = stageJson(result.times);
+        stats["warnings"] = warnings;
+        writeOutputFile(statsPath, stats.dump(2) + "\n", "stats");
     }
     if (interrupted != 0) {
         std::fprintf(stderr, "photon-render: %s: stopped after %u frame%s; the image so far is in %s%s%s\n",
@@ -218,11 +207,9 @@ int run(int argc, char** argv) {
         return 128 + interrupted;
     }
     if (!quiet) {
-        const FrameStats& last = backend->lastFrameStats();
         std::fprintf(stderr, "%s on %s: %ux%u, %u frame%s in %.2f s (%.1f ms/frame), photons stored %s -> %s\n",
-                     backend->name().c_str(), backend->deviceName().c_str(), settings.width, settings.height, frames,
-                     frames == 1 ? "" : "s", wall, 1000.0 * wall / frames, last.storedList().c_str(),
-                     output.c_str());
+                     result.backend.c_str(), result.device.c_str(), settings.width, settings.height, frames,
+                     frames == 1 ? "" : "s", wall, 1000.0 * wall / frames, result.last.storedList().c_str(), output.c_str());
     }
     return 0;
 }

@@ -20,17 +20,25 @@ PH_FN vec3 evalBsdf(PH_IN(Material) m, vec3 wo, vec3 wi, vec3 n) {
     if (cosI <= 0.0f || cosO <= 0.0f) {
         return vec3(0.0f);
     }
-    if (m.type == MATERIAL_PBR) {
-        return evalPbr(m, wo, wi, n, cosO, cosI);
+    PH_COVERS(MATERIAL_TYPE_COUNT, 7u);
+    switch (m.type) {
+        case MATERIAL_DIFFUSE:
+        case MATERIAL_REFLECTIVE:  // the Lambertian base under the coat
+            return m.albedo * INV_PI;
+        case MATERIAL_GLOSSY: {
+            vec3 h = unitVector(wi + wo);
+            float alpha = m.roughness;
+            float g = ggxG1(cosO, alpha) * ggxG1(cosI, alpha);
+            return m.albedo * INV_PI + m.specular * (ggxD(dot(h, n), alpha) * g / (4.0f * cosO * cosI));
+        }
+        case MATERIAL_PBR:
+            return evalPbr(m, wo, wi, n, cosO, cosI);
+        case MATERIAL_MIRROR:
+        case MATERIAL_GLASS:
+        case MATERIAL_EMITTER:
+            break;  // deltas, or nothing: no density to evaluate
     }
-    vec3 f = m.albedo * INV_PI;
-    if (m.type == MATERIAL_GLOSSY) {
-        vec3 h = unitVector(wi + wo);
-        float alpha = m.roughness;
-        float g = ggxG1(cosO, alpha) * ggxG1(cosI, alpha);
-        f += m.specular * (ggxD(dot(h, n), alpha) * g / (4.0f * cosO * cosI));
-    }
-    return f;
+    return vec3(0.0f);
 }
 
 // The mirror coat of a reflective material (nf: the shading normal on wo's side): its mirror
@@ -72,61 +80,74 @@ PH_FN BsdfSample sampleBsdfLobes(PH_IN(Material) m, vec3 wo, vec3 n, vec3 ns, ui
     float side = dot(wo, n) >= 0.0f ? 1.0f : -1.0f;
     vec3 nf = ns * side;
     bool transmits = false;
-    if (m.type == MATERIAL_DIFFUSE) {
-        bs.direction = localToWorld(sampleCosineHemisphere(u1, u2), nf);
-        bs.weight = m.albedo;
-        bs.lobe = LOBE_DIFFUSE;
-    } else if (m.type == MATERIAL_GLOSSY) {
-        float pSpecular = specularLobeProbability(m);
-        if (u0 < pSpecular) {
-            vec3 h = localToWorld(sampleGgxNormal(u1, u2, m.roughness), nf);
-            vec3 wi = reflectAbout(wo, h);
-            float cosI = dot(wi, nf);
-            float cosO = dot(wo, nf);
-            if (cosI > 0.0f && cosO > 0.0f) {
-                // f·cosθi / pdf with pdf = D·cosθh / (4|wo·h|): D cancels.
-                float alpha = m.roughness;
-                float g = ggxG1(cosO, alpha) * ggxG1(cosI, alpha);
-                bs.direction = wi;
-                bs.weight = m.specular * (g * dot(wo, h) / (cosO * dot(h, nf) * pSpecular));
-                bs.lobe = LOBE_GLOSSY;
+    PH_COVERS(MATERIAL_TYPE_COUNT, 7u);
+    switch (m.type) {
+        case MATERIAL_DIFFUSE:
+            bs.direction = localToWorld(sampleCosineHemisphere(u1, u2), nf);
+            bs.weight = m.albedo;
+            bs.lobe = LOBE_DIFFUSE;
+            break;
+        case MATERIAL_GLOSSY: {
+            float pSpecular = specularLobeProbability(m);
+            if (u0 < pSpecular) {
+                vec3 h = localToWorld(sampleGgxNormal(u1, u2, m.roughness), nf);
+                vec3 wi = reflectAbout(wo, h);
+                float cosI = dot(wi, nf);
+                float cosO = dot(wo, nf);
+                if (cosI > 0.0f && cosO > 0.0f) {
+                    // f·cosθi / pdf with pdf = D·cosθh / (4|wo·h|): D cancels.
+                    float alpha = m.roughness;
+                    float g = ggxG1(cosO, alpha) * ggxG1(cosI, alpha);
+                    bs.direction = wi;
+                    bs.weight = m.specular * (g * dot(wo, h) / (cosO * dot(h, nf) * pSpecular));
+                    bs.lobe = LOBE_GLOSSY;
+                }
+            } else {
+                bs.direction = localToWorld(sampleCosineHemisphere(u1, u2), nf);
+                bs.weight = m.albedo / (1.0f - pSpecular);
+                bs.lobe = LOBE_DIFFUSE;
             }
-        } else {
-            bs.direction = localToWorld(sampleCosineHemisphere(u1, u2), nf);
-            bs.weight = m.albedo / (1.0f - pSpecular);
-            bs.lobe = LOBE_DIFFUSE;
+            break;
         }
-    } else if (m.type == MATERIAL_MIRROR) {
-        bs.direction = reflectAbout(wo, nf);
-        bs.weight = m.specular;
-        bs.lobe = LOBE_SPECULAR;
-    } else if (m.type == MATERIAL_REFLECTIVE) {
-        float pMirror = specularLobeProbability(m);
-        if (u0 < pMirror) {
-            bs = sampleMirrorCoat(m, wo, nf);
-        } else {
-            bs.direction = localToWorld(sampleCosineHemisphere(u1, u2), nf);
-            bs.weight = m.albedo / (1.0f - pMirror);
-            bs.lobe = LOBE_DIFFUSE;
-        }
-    } else if (m.type == MATERIAL_GLASS) {
-        bool entering = side > 0.0f;
-        float eta = entering ? m.ior : 1.0f / m.ior;
-        float reflectance = fresnelDielectric(dot(wo, nf), eta);
-        vec3 wt = nf;
-        bool refracts = refractThrough(wo, nf, eta, wt);
-        // Choose reflection with probability F: the weights F/F and (1-F)/(1-F) are 1.
-        if (!refracts || u0 < reflectance) {
+        case MATERIAL_MIRROR:
             bs.direction = reflectAbout(wo, nf);
-            bs.weight = vec3(1.0f);
-        } else {
-            bs.direction = unitVector(wt);
             bs.weight = m.specular;
-            transmits = true;
+            bs.lobe = LOBE_SPECULAR;
+            break;
+        case MATERIAL_REFLECTIVE: {
+            float pMirror = specularLobeProbability(m);
+            if (u0 < pMirror) {
+                bs = sampleMirrorCoat(m, wo, nf);
+            } else {
+                bs.direction = localToWorld(sampleCosineHemisphere(u1, u2), nf);
+                bs.weight = m.albedo / (1.0f - pMirror);
+                bs.lobe = LOBE_DIFFUSE;
+            }
+            break;
         }
-        bs.lobe = LOBE_SPECULAR;
-    } else if (m.type == MATERIAL_PBR) {
-        bs = samplePbr(m, wo, nf, side > 0.0f, pbrSubset, u0, u1, u2, transmits);
+        case MATERIAL_GLASS: {
+            bool entering = side > 0.0f;
+            float eta = entering ? m.ior : 1.0f / m.ior;
+            float reflectance = fresnelDielectric(dot(wo, nf), eta);
+            vec3 wt = nf;
+            bool refracts = refractThrough(wo, nf, eta, wt);
+            // Choose reflection with probability F: the weights F/F and (1-F)/(1-F) are 1.
+            if (!refracts || u0 < reflectance) {
+                bs.direction = reflectAbout(wo, nf);
+                bs.weight = vec3(1.0f);
+            } else {
+                bs.direction = unitVector(wt);
+                bs.weight = m.specular;
+                transmits = true;
+            }
+            bs.lobe = LOBE_SPECULAR;
+            break;
+        }
+        case MATERIAL_PBR:
+            bs = samplePbr(m, wo, nf, side > 0.0f, pbrSubset, u0, u1, u2, transmits);
+            break;
+        case MATERIAL_EMITTER:
+            break;  // absorbs everything
     }
     return absorbAcrossSurface(bs, n, side, transmits);
 }
@@ -140,6 +161,7 @@ PH_FN float pdfBsdf(PH_IN(Material) m, vec3 wo, vec3 wi, vec3 n) {
     if (cosI <= 0.0f || cosO <= 0.0f) {
         return 0.0f;
     }
+    PH_COVERS(MATERIAL_TYPE_COUNT, 7u);
     switch (m.type) {
         case MATERIAL_DIFFUSE:
             return cosI * INV_PI;

@@ -106,12 +106,22 @@ PH_CONST uint DENOISE_OFF = 0u;
 PH_CONST uint DENOISE_ON = 1u;
 PH_CONST uint DENOISE_MODE_COUNT = 2u;
 
-// Photon maps. Every per-map quantity (grids, capacities, counters, radii, sppm state) is an
-// array indexed by these, so that a further map is one constant here plus the photon pass that
-// fills it.
-PH_CONST uint MAP_GLOBAL = 0u;
-PH_CONST uint MAP_CAUSTIC = 1u;
-PH_CONST uint MAP_COUNT = 2u;
+// Photon maps, one row each: the constant, its index, the name reports give it, the option of
+// its query radius, and the host's first radius for the single-frame estimators (in median pixel
+// footprints), the share of the global map's fallback radius, and sppm's first disc (photons it
+// should hold, clamped to footprints min..max). Every per-map quantity (grids, capacities,
+// counters, radii, sppm state) is an array indexed by MAP_*, and every host table is made from
+// these rows, so that a further map is one row here plus the photon pass that fills it.
+#define PH_MAPS(X)                                                                   \
+    X(GLOBAL, 0u, "global", "--radius", 8.0f, 1.0f, 64u, 1.5f, 16.0f)                 \
+    X(CAUSTIC, 1u, "caustic", "--caustic-radius", 4.0f, 0.5f, 64u, 1.0f, 8.0f)
+
+// (No variadic macros: GLSL's preprocessor has none.)
+#define PH_MAP_CONSTANT(NAME, id, name, radiusFlag, autoFootprints, fallbackShare, sppmPhotons, sppmMin, sppmMax) \
+    PH_CONST uint MAP_##NAME = id;
+PH_MAPS(PH_MAP_CONSTANT)
+#define PH_COUNT_MAP(NAME, id, name, radiusFlag, autoFootprints, fallbackShare, sppmPhotons, sppmMin, sppmMax) 1u +
+PH_CONST uint MAP_COUNT = PH_MAPS(PH_COUNT_MAP) 0u;
 
 // Slots of the counters buffer, each a run of MAP_COUNT (the histograms: of MAP_COUNT × bins).
 PH_CONST uint COUNTER_STORED = 0u;                   // photons appended to each map this frame

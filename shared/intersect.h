@@ -191,6 +191,7 @@ PH_FN float intersectPrimitive(BUF_PARAM uint ref, PH_IN(Ray) ray, PH_IN(RayFram
     uint index = primitiveIndex(ref);
     b1 = 0.0f;
     b2 = 0.0f;
+    PH_COVERS(PRIM_KIND_COUNT, 4u);
     switch (kind) {
         case PRIM_SPHERE:
             return intersectSphere(ray, BUF(spheres)[index].center, BUF(spheres)[index].radius, tMax);
@@ -382,6 +383,7 @@ PH_FN TraceResult traceRay(BUF_PARAM PH_IN(Ray) ray, uint query) {
 PH_FN void primitiveSurface(BUF_PARAM uint kind, uint index, vec3 p, PH_OUT(vec3) normal, PH_OUT(uint) material) {
     normal = vec3(0.0f, 0.0f, 1.0f);
     material = NONE;
+    PH_COVERS(PRIM_KIND_COUNT, 4u);
     switch (kind) {
         case PRIM_SPHERE: {
             Sphere s = BUF(spheres)[index];

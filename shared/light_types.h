@@ -17,6 +17,7 @@ PH_CONST uint LIGHT_FLAG_AREA = 4u;             // a surface of the scene emits:
 PH_CONST uint LIGHT_FLAG_INFINITE = 8u;         // surrounds the scene: rays that leave it see it
 
 PH_FN uint lightFlags(uint type) {
+    PH_COVERS(LIGHT_TYPE_COUNT, 7u);
     switch (type) {
         case LIGHT_POINT:
         case LIGHT_SPOT:

@@ -71,6 +71,7 @@ PH_FN float spotFalloff(PH_IN(Light) light, float x) {
 
 // Radiant intensity [W/sr] of a point or spot light in the unit direction dir.
 PH_FN vec3 pointIntensity(PH_IN(Light) light, vec3 dir) {
+    PH_COVERS(LIGHT_TYPE_COUNT, 7u);
     switch (light.type) {
         case LIGHT_SPOT: {
             float falloff = spotFalloff(light, oneMinusCos(dir, spotAxis(light)));
@@ -116,6 +117,7 @@ PH_FN void sampleAreaLight(BUF_PARAM PH_IN(Light) light, float u0, float u1, flo
     n = vec3(0.0f, 0.0f, 1.0f);
     radiance = vec3(0.0f);
     areaPdf = 1.0f;
+    PH_COVERS(LIGHT_TYPE_COUNT, 7u);
     switch (light.type) {
         case LIGHT_TRIANGLES: {
             EmissiveTriangle e = BUF(emissiveTriangles)[pickEmitter(BUF_ARG light, u0)];
@@ -218,6 +220,7 @@ PH_FN PhotonEmission emitPhoton(BUF_PARAM PH_IN(Light) light, PH_INOUT(Rng) rng)
     float u3 = rngNext(rng);
     float u4 = rngNext(rng);
     PhotonEmission e = noEmission();
+    PH_COVERS(LIGHT_TYPE_COUNT, 7u);
     switch (light.type) {
         case LIGHT_POINT:
             e.origin = pointPosition(light);
@@ -267,6 +270,7 @@ PH_FN float oneMinusCosSum(float xa, float xb) {
 PH_FN bool emitterCone(PH_IN(Light) light, vec3 n, PH_OUT(Cone) cone) {
     cone.axis = n;
     cone.x = 1.0f;
+    PH_COVERS(LIGHT_TYPE_COUNT, 7u);
     switch (light.type) {
         case LIGHT_SPOT:
             cone.axis = spotAxis(light);
@@ -464,6 +468,7 @@ PH_FN PhotonEmission emitConeCausticPhoton(BUF_PARAM PH_IN(Light) light, PH_INOU
 
 // Photon of the caustic pass, aimed at the specular objects.
 PH_FN PhotonEmission emitCausticPhoton(BUF_PARAM PH_IN(Light) light, PH_INOUT(Rng) rng) {
+    PH_COVERS(LIGHT_TYPE_COUNT, 7u);
     switch (light.type) {
         case LIGHT_POINT:
         case LIGHT_SPOT:
@@ -487,6 +492,7 @@ PH_FN LightSample sampleDirectLight(BUF_PARAM PH_IN(Light) light, vec3 x, PH_INO
     ls.direction = vec3(0.0f, 0.0f, 1.0f);
     ls.point = x;
     ls.pdf = 0.0f;
+    PH_COVERS(LIGHT_TYPE_COUNT, 7u);
     switch (light.type) {
         case LIGHT_POINT:
         case LIGHT_SPOT: {
@@ -556,6 +562,7 @@ PH_FN LightSample sampleDirectLight(BUF_PARAM PH_IN(Light) light, vec3 x, PH_INO
 // sees, directly and through mirrors and glass.
 PH_FN vec3 infiniteRadiance(BUF_PARAM vec3 direction) {
     Light light = BUF(infiniteLights)[BUF(params).scene.infiniteLight];
+    PH_COVERS(LIGHT_TYPE_COUNT, 7u);
     switch (light.type) {
         case LIGHT_ENVIRONMENT:
             return environmentRadiance(BUF_ARG light, direction);

@@ -55,6 +55,7 @@ PH_FN uint pbrFlags(PH_IN(Material) m) {
 
 PH_FN uint materialFlags(PH_IN(Material) m) {
     uint emits = isBlack(m.emission) ? 0u : SURFACE_EMITS;  // any material may also emit (glTF, MTL Ke)
+    PH_COVERS(MATERIAL_TYPE_COUNT, 7u);
     switch (m.type) {
         case MATERIAL_DIFFUSE:
             return emits | SURFACE_STORES_PHOTONS | SURFACE_ENDS_EYE_PATHS | SURFACE_LAMBERTIAN;

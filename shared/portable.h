@@ -19,8 +19,9 @@
 //    such a result PH_PRECISE (GLSL `precise`: no contraction, no inexact rewrites; empty in C++).
 //  - Names reserved in GLSL stay unused: sample, input, output, filter, buffer, shared, half,
 //    active, common, partition, and anything with a double underscore.
-//  - A dispatch over a type (LIGHT_*, MATERIAL_*, PRIM_*) is a switch with a case for each value
-//    and no default: the host refuses unknown values, so nothing may pretend to handle them.
+//  - A dispatch over a type (LIGHT_*, MATERIAL_*, PRIM_*, MAP_*) is a switch with a case for each
+//    value and no default, after PH_COVERS(TYPE_COUNT, cases): the host refuses unknown values, so
+//    nothing may pretend to handle them, and a new value fails to compile where it has no case.
 //  - A parameter one version of a function does not read is marked PH_UNUSED(name) (C++ warns).
 //  - Buffer structs are declared `struct PH_ALIGN16 Name`.
 //  - Buffers are reached through BUF(name): a global buffer in GLSL, a member of the Bindings
@@ -46,6 +47,7 @@
 #define PH_NAMESPACE_END
 #define PH_PRECISE precise
 #define PH_UNUSED(x)
+#define PH_COVERS(count, cases)
 #define PH_ALIGN16
 #define BUF_PARAM
 #define BUF_ARG
@@ -80,6 +82,10 @@
 #define PH_NAMESPACE_END }
 #define PH_PRECISE
 #define PH_UNUSED(x) (void)(x)  // a parameter this version of a function does not need
+// Before a switch over a type: it has `cases` cases, which must be all of the type's `count`
+// values; adding a value fails the C++ and CUDA builds at every switch that lacks its case (the
+// GLSL shaders compile the same source, which g++ checks first).
+#define PH_COVERS(count, cases) static_assert((count) == (cases), "a case for every value of " #count)
 // Buffer structs are multiples of 16 bytes; saying so lets compilers load them 16 bytes at a time
 // (GLM's vec3 alone would make them 4-byte aligned).
 #define PH_ALIGN16 alignas(16)

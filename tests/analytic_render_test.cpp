@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <cstring>
 
-#include "apps/backends.h"
+#include "core/render/devices.h"
 #include "core/loaders/scene_loader.h"
 #include "known_answers.h"
 #include "test_util.h"

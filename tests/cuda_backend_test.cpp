@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "apps/backends.h"
+#include "core/render/devices.h"
 #include "backend_compare.h"
 #include "core/loaders/scene_loader.h"
 #include "core/scene/camera_path.h"

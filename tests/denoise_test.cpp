@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "apps/backends.h"
+#include "core/render/devices.h"
 #include "core/frame/aov_images.h"
 #include "core/image/image_error.h"
 #include "core/loaders/scene_loader.h"

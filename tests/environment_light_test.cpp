@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "apps/backends.h"
+#include "core/render/devices.h"
 #include "core/system/error.h"
 #include "shared/environment.h"
 #include "shared/rng.h"

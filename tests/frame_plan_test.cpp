@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/frame/scene_settings.h"
 #include "core/frame/backend.h"
 #include "core/frame/buffers.h"
 #include "core/frame/median.h"

@@ -10,7 +10,7 @@
 #include <cstdio>
 #include <fstream>
 
-#include "apps/backends.h"
+#include "core/render/devices.h"
 #include "core/loaders/model_loader.h"
 #include "known_answers.h"
 #include "test_util.h"

@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cstring>
 
-#include "apps/backends.h"
+#include "core/render/devices.h"
 #include "core/loaders/scene_loader.h"
 #include "test_util.h"
 

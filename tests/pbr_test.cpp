@@ -14,7 +14,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "apps/backends.h"
+#include "core/render/devices.h"
 #include "core/scene/scene.h"
 #include "shared/bsdf.h"
 #include "shared/intersect.h"

@@ -2,7 +2,7 @@
 // them without losing or double-counting any, and the maps hold the flux they should.
 #include <gtest/gtest.h>
 
-#include "apps/backends.h"
+#include "core/render/devices.h"
 #include "core/loaders/scene_loader.h"
 #include "test_render.h"
 #include "test_util.h"

@@ -189,7 +189,7 @@ PNG
 expect 2 "huge.png: image of 100000x100000 texels; at most 8192 a side" "$render" "$tmp/huge.obj" "${small[@]}" -o "$tmp/a.png"
 
 # 11. Smaller things.
-expect 2 "path is empty" "$render" "" "${small[@]}" -o "$tmp/a.png"
+expect 2 "scene: an empty file name" "$render" "" "${small[@]}" -o "$tmp/a.png"
 { cat "$scenes/cornell.json"; printf '\0'; } >"$tmp/nul.json"
 expect 2 "NUL" "$render" "$tmp/nul.json" "${small[@]}" -o "$tmp/a.png"
 sed 's/"material": "mirror"/"material": "\xc2\x85mirror\\u001b[2J"/' "$scenes/cornell.json" >"$tmp/bytes.json"

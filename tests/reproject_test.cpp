@@ -11,7 +11,7 @@
 #include <cstring>
 #include <vector>
 
-#include "apps/backends.h"
+#include "core/render/devices.h"
 #include "backend_compare.h"
 #include "core/image/image_error.h"
 #include "core/loaders/scene_loader.h"

@@ -4,7 +4,7 @@
 
 #include <filesystem>
 
-#include "apps/backends.h"
+#include "core/render/devices.h"
 #include "core/loaders/scene_loader.h"
 #include "test_render.h"
 #include "test_util.h"

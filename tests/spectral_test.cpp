@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <cstring>
 
-#include "apps/backends.h"
+#include "core/render/devices.h"
 #include "core/loaders/scene_loader.h"
 #include "core/spectral/spectrum.h"
 #include "known_answers.h"

@@ -9,7 +9,7 @@
 #include <limits>
 #include <string>
 
-#include "apps/backends.h"
+#include "core/render/devices.h"
 #include "backend_compare.h"
 #include "core/image/image_error.h"
 #include "core/loaders/scene_loader.h"

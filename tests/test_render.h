@@ -4,7 +4,7 @@
 
 #include <cstdint>
 
-#include "apps/backends.h"
+#include "core/render/devices.h"
 
 namespace photon::test {
 

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "core/frame/scene_settings.h"
 #include "core/loaders/scene_loader.h"
 #include "core/settings/setting_specs.h"
 #include "core/system/error.h"

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "core/frame/scene_settings.h"
 #include "core/settings/setting_specs.h"
 #include "shared/map_photon.h"
 #include "core/system/error.h"

@@ -45,8 +45,11 @@ struct FrameResult {
     std::uint32_t counters[COUNTER_COUNT] = {};
 };
 
-// The photon maps as reports name them, by map id.
-inline constexpr const char* kMapNames[MAP_COUNT] = {"global", "caustic"};
+// The photon maps as reports name them, by map id (shared/constants.h's rows).
+#define PH_MAP_NAME(NAME, id, name, radiusFlag, autoFootprints, fallbackShare, sppmPhotons, sppmMin, sppmMax) name,
+inline constexpr const char* kMapNames[] = {PH_MAPS(PH_MAP_NAME)};
+#undef PH_MAP_NAME
+static_assert(sizeof(kMapNames) / sizeof(kMapNames[0]) == MAP_COUNT, "a name for every map");
 
 struct FrameStats {
     StageTimes ms;

@@ -6,27 +6,36 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/frame/scene_settings.h"
 #include "shared/progressive.h"
 
 namespace photon {
 namespace {
 
-// Each photon map's rules, a value per map.
-
-// Automatic radii in footprints (of the median footprint) for the single-frame estimators.
-constexpr float kAutoRadiusFootprints[MAP_COUNT] = {8.0f, 4.0f};
-// Where no footprint could be measured: the global map's radius is 1% of the scene's diagonal, and
-// every other map's its share of it.
-constexpr float kFallbackShare[MAP_COUNT] = {1.0f, 0.5f};
-
-// sppm starts each pixel at the disc that would hold this many photons at the density about it
-// (sppm.h): few enough to keep detail, enough that the first frames are not all noise (16 caustic
-// photons made the Cornell box's first frames noisier than radii from the footprints). The
-// footprints that would hold them if photons spread evenly over the image (clamped to the range
-// below) are the first frame's cell size and the radius of a pixel with no photons about it.
-constexpr std::uint32_t kSppmFirstPhotons[MAP_COUNT] = {64, 64};
-constexpr float kSppmFirstFootprintsMin[MAP_COUNT] = {1.5f, 1.0f};
-constexpr float kSppmFirstFootprintsMax[MAP_COUNT] = {16.0f, 8.0f};
+// Each photon map's rules, a value per map, from its row in shared/constants.h (PH_MAPS):
+// - the automatic radii in footprints (of the median footprint) of the single-frame estimators;
+// - where no footprint could be measured, the global map's radius is 1% of the scene's diagonal,
+//   and every other map's its share of it;
+// - sppm starts each pixel at the disc that would hold this many photons at the density about it
+//   (sppm.h): few enough to keep detail, enough that the first frames are not all noise (16
+//   caustic photons made the Cornell box's first frames noisier than radii from the footprints).
+//   The footprints that would hold them if photons spread evenly over the image (clamped to the
+//   range) are the first frame's cell size and the radius of a pixel with no photons about it.
+#define PH_MAP_AUTO(NAME, id, name, radiusFlag, autoFootprints, fallbackShare, sppmPhotons, sppmMin, sppmMax) autoFootprints,
+#define PH_MAP_FALLBACK(NAME, id, name, radiusFlag, autoFootprints, fallbackShare, sppmPhotons, sppmMin, sppmMax) fallbackShare,
+#define PH_MAP_SPPM_PHOTONS(NAME, id, name, radiusFlag, autoFootprints, fallbackShare, sppmPhotons, sppmMin, sppmMax) sppmPhotons,
+#define PH_MAP_SPPM_MIN(NAME, id, name, radiusFlag, autoFootprints, fallbackShare, sppmPhotons, sppmMin, sppmMax) sppmMin,
+#define PH_MAP_SPPM_MAX(NAME, id, name, radiusFlag, autoFootprints, fallbackShare, sppmPhotons, sppmMin, sppmMax) sppmMax,
+constexpr float kAutoRadiusFootprints[] = {PH_MAPS(PH_MAP_AUTO)};
+constexpr float kFallbackShare[] = {PH_MAPS(PH_MAP_FALLBACK)};
+constexpr std::uint32_t kSppmFirstPhotons[] = {PH_MAPS(PH_MAP_SPPM_PHOTONS)};
+constexpr float kSppmFirstFootprintsMin[] = {PH_MAPS(PH_MAP_SPPM_MIN)};
+constexpr float kSppmFirstFootprintsMax[] = {PH_MAPS(PH_MAP_SPPM_MAX)};
+static_assert(sizeof(kAutoRadiusFootprints) == MAP_COUNT * sizeof(float) && sizeof(kFallbackShare) == MAP_COUNT * sizeof(float) &&
+                  sizeof(kSppmFirstPhotons) == MAP_COUNT * sizeof(std::uint32_t) &&
+                  sizeof(kSppmFirstFootprintsMin) == MAP_COUNT * sizeof(float) &&
+                  sizeof(kSppmFirstFootprintsMax) == MAP_COUNT * sizeof(float),
+              "a value for every map");
 
 // sppm: a frame's paths of a map count as one photon pass per SPPM_BATCH_PATHS (sppm.h).
 std::uint32_t sppmPasses(std::uint32_t paths) {

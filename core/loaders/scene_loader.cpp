@@ -554,10 +554,6 @@ Scene loadSceneJson(const std::string& text, const std::string& sourceName, cons
         readRender(root["render"], scene.render);
     }
     scene.finalize();
-    if (widestSpan(scene.boundsMin, scene.boundsMax) > kMaxSceneSpan) {
-        root["objects"].fail("the scene (its objects and lights) is " + describeSpan(scene.boundsMin, scene.boundsMax) +
-                             ", wider than the " + formatNumber(kMaxSceneSpan) + " Photon renders");
-    }
     if (scene.lights.empty()) {
         root["lights"].fail("nothing emits light: the only light is an environment that is black or does not light");
     }

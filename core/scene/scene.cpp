@@ -372,7 +372,7 @@ void Scene::addQuadLight(glm::vec3 corner, glm::vec3 edgeU, glm::vec3 edgeV, glm
 }
 
 const char* lightTypeName(std::uint32_t type) {
-    static_assert(LIGHT_TYPE_COUNT == 7u, "a name for every LIGHT_*");
+    PH_COVERS(LIGHT_TYPE_COUNT, 7u);
     switch (type) {
         case LIGHT_POINT: return "point";
         case LIGHT_SPOT: return "spot";
@@ -399,6 +399,7 @@ void Scene::moveLight(std::uint32_t light, glm::vec3 delta) {
     // The emitter surface that addSphereLight/addQuadLight made carries the material named after it.
     std::uint32_t emitter = findMaterial("light" + std::to_string(light));
     bool ownSurface = emitter != NONE && materials[emitter].type == MATERIAL_EMITTER;
+    PH_COVERS(LIGHT_TYPE_COUNT, 7u);
     switch (l.type) {
         case LIGHT_POINT:
         case LIGHT_SPOT:

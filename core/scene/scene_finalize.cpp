@@ -142,6 +142,7 @@ void computeBounds(Scene& scene) {
         hi = glm::max(hi, glm::max(t.v0, glm::max(t.v1, t.v2)));
     }
     for (const Light& l : scene.lights) {
+        PH_COVERS(LIGHT_TYPE_COUNT, 7u);
         switch (l.type) {
             case LIGHT_POINT:
             case LIGHT_SPOT:

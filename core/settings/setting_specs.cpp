@@ -8,7 +8,6 @@
 #include <stdexcept>
 #include <limits>
 
-#include "core/frame/frame_setup.h"
 #include "core/system/error.h"
 
 namespace photon {
@@ -106,16 +105,6 @@ std::vector<SettingSpec> makeSpecs() {
     };
 }
 
-// Decimal numbers only: no "nan", "inf" or hexadecimal, nothing after the number (1e999 is
-// infinite, for the range checks to refuse).
-bool parseDecimal(const std::string& text, double& value) {
-    bool decimal = !text.empty() && text.find_first_not_of("0123456789+-.eE") == std::string::npos;
-    char* end = nullptr;
-    errno = 0;
-    value = decimal ? std::strtod(text.c_str(), &end) : 0.0;
-    return decimal && end == text.c_str() + text.size();
-}
-
 [[noreturn]] void fail(const std::string& where, const std::string& reason) { throw InputError(where + ": " + reason); }
 
 std::string expectation(const SettingSpec& spec) {
@@ -155,17 +144,6 @@ void store(RenderSettings& settings, const SettingSpec& spec, double value, cons
 
 }  // namespace
 
-std::string formatNumber(double x) {
-    char text[32];
-    for (int digits = 6; digits <= 17; ++digits) {
-        std::snprintf(text, sizeof text, "%.*g", digits, x);
-        if (std::strtod(text, nullptr) == x) {
-            break;
-        }
-    }
-    return text;
-}
-
 std::pair<std::uint32_t, std::uint32_t> parseImageSize(const std::string& text, const std::string& option) {
     // Digits, 'x', digits: no signs, spaces or exponents; a side of 20 digits is still read (as
     // out of range), not wrapped.
@@ -186,13 +164,6 @@ std::pair<std::uint32_t, std::uint32_t> parseImageSize(const std::string& text, 
         }
     }
     return {std::uint32_t(side[0]), std::uint32_t(side[1])};
-}
-
-std::string Range::describe() const {
-    if (lo == 0.0 && hi == kInfinity) {
-        return openLo ? "positive" : "non-negative";
-    }
-    return std::string("in ") + (openLo ? "(" : "[") + formatNumber(lo) + ", " + formatNumber(hi) + (openHi ? ")" : "]");
 }
 
 const std::vector<SettingSpec>& settingSpecs() {
@@ -237,17 +208,6 @@ void setSetting(RenderSettings& settings, const SettingSpec& spec, const std::st
         fail(where, "must be " + expectation(spec) + " (got '" + text + "', not a number)");
     }
     store(settings, spec, value, text, where);
-}
-
-double parseNumber(const std::string& text, const Range& range, const std::string& where) {
-    double value = 0.0;
-    if (!parseDecimal(text, value)) {
-        fail(where, "must be a number " + range.describe() + " (got '" + text + "', not a number)");
-    }
-    if (!std::isfinite(value) || !range.contains(value)) {
-        fail(where, "must be a finite number " + range.describe() + " (got " + text + ")");
-    }
-    return value;
 }
 
 void setSettingNumber(RenderSettings& settings, const SettingSpec& spec, double value, const std::string& shown,
@@ -317,35 +277,6 @@ void choosePhotons(RenderSettings& settings, bool onCpu) {
     std::uint64_t pixels = std::uint64_t(settings.width) * settings.height;
     std::uint64_t photons = (pixels / kCpuPixelsPerPhoton + 500) / 1000 * 1000;
     settings.photons = std::uint32_t(std::clamp<std::uint64_t>(photons, kCpuPhotonsMin, kGpuDefaultPhotons));
-}
-
-void chooseSpectral(RenderSettings& settings, const Scene& scene) {
-    if (isGiven(settings, "spectral")) {
-        return;
-    }
-    settings.spectral = std::any_of(scene.materials.begin(), scene.materials.end(),
-                                    [](const Material& m) { return m.dispersion > 0.0f; });
-}
-
-void validateForScene(const RenderSettings& settings, const Scene& scene, const FrameRadii& radii) {
-    glm::vec3 extent = scene.boundsMax - scene.boundsMin;
-    double size = std::max({double(extent.x), double(extent.y), double(extent.z)});
-    for (std::uint32_t map = 0; map < MAP_COUNT; ++map) {
-        double r = radii.radius[map];
-        std::string what = std::string(mapRadiusFlag(map)) + " " + formatNumber(r) + (mapRadius(settings, map) > 0.0f ? "" : " (automatic)");
-        if (!kRadius.contains(r)) {
-            fail(what, "must be " + kRadius.describe() + "; the scene spans " + formatNumber(size));
-        }
-        if (settings.grid == GridKind::Bounded) {
-            // A bounded grid's query reaches kBoundedGridReachCells cells from its centre.
-            double cell = size / double(settings.gridResolution);
-            if (r > kBoundedGridReachCells * cell * (1.0 + 1e-6)) {
-                fail(what, "too large for the bounded grid, whose cells are " + formatNumber(cell) + " wide: at most " +
-                               formatNumber(kBoundedGridReachCells) +
-                               " cells (lower --grid-resolution for wider cells, or use --grid hashed)");
-            }
-        }
-    }
 }
 
 }  // namespace photon

@@ -10,23 +10,10 @@
 #include <utility>
 #include <vector>
 
-#include "core/frame/estimator_policy.h"
-#include "core/scene/scene.h"
 #include "core/settings/settings.h"
+#include "core/system/numbers.h"
 
 namespace photon {
-
-// The values a number may take, for checks and their messages.
-struct Range {
-    double lo, hi;
-    bool openLo = false, openHi = false;
-
-    bool contains(double x) const { return (openLo ? x > lo : x >= lo) && (openHi ? x < hi : x <= hi); }
-    std::string describe() const;  // "positive", "in [0, 1)", ...
-};
-
-// A number as a message shows it: shortest round-trip form ("1e+39", "0.04").
-std::string formatNumber(double x);
 
 enum class SettingKind { Integer, Number, Choice, Flag };
 
@@ -57,11 +44,6 @@ void setSetting(RenderSettings& settings, const SettingSpec& spec, const std::st
 void setSettingNumber(RenderSettings& settings, const SettingSpec& spec, double value, const std::string& shown,
                       const std::string& where);
 
-// A number of the command line that is no render setting (photon-render's --time), parsed and
-// checked as the settings are: a finite decimal number within `range`, else InputError
-// "<where>: must be ...".
-double parseNumber(const std::string& text, const Range& range, const std::string& where);
-
 // Every setting in its range (values set directly, as the viewer's HUD does, are checked here);
 // throws InputError naming the first bad one by its flag.
 void validateSettings(const RenderSettings& settings);
@@ -86,19 +68,11 @@ inline constexpr std::uint32_t kCpuPixelsPerPhoton = 3;
 inline constexpr std::uint32_t kCpuPhotonsMin = 20000;
 void choosePhotons(RenderSettings& settings, bool onCpu);
 
-// Spectral rendering when neither the file nor the command line says: on for a scene with a
-// dispersive material (an Abbe number, KHR_materials_dispersion), which RGB cannot show; else RGB
-// (spectral's first frames carry a colour cast; docs/performance.md, issue 21).
-void chooseSpectral(RenderSettings& settings, const Scene& scene);
-
 // "WIDTHxHEIGHT" (or "WxH" with a capital X) as an option gives an image size: each side in
 // --width's and --height's range, or InputError naming `option` and which side is out of range.
 std::pair<std::uint32_t, std::uint32_t> parseImageSize(const std::string& text, const std::string& option);
 
 // The default length of photon-render's render without --frames, --time or frames in the scene.
 inline constexpr double kDefaultRenderSeconds = 2.0;
-
-// The settings against the scene they render: query radii the grids can hold.
-void validateForScene(const RenderSettings& settings, const Scene& scene, const FrameRadii& radii);
 
 }  // namespace photon

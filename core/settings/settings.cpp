@@ -73,7 +73,7 @@ std::string list(const Names<E, N>& names) {
 }  // namespace
 
 float mapRadius(const RenderSettings& settings, std::uint32_t map) {
-    static_assert(MAP_COUNT == 2, "a new photon map needs its radius setting here");
+    PH_COVERS(MAP_COUNT, 2u);
     switch (map) {
         case MAP_GLOBAL: return settings.radius;
         case MAP_CAUSTIC: return settings.causticRadius;
@@ -82,11 +82,14 @@ float mapRadius(const RenderSettings& settings, std::uint32_t map) {
 }
 
 const char* mapRadiusFlag(std::uint32_t map) {
-    switch (map) {
-        case MAP_GLOBAL: return "--radius";
-        case MAP_CAUSTIC: return "--caustic-radius";
+#define PH_MAP_FLAG(NAME, id, name, radiusFlag, autoFootprints, fallbackShare, sppmPhotons, sppmMin, sppmMax) radiusFlag,
+    static constexpr const char* kFlags[] = {PH_MAPS(PH_MAP_FLAG)};
+#undef PH_MAP_FLAG
+    static_assert(sizeof(kFlags) / sizeof(kFlags[0]) == MAP_COUNT, "a radius option for every map");
+    if (map >= MAP_COUNT) {
+        throw std::logic_error("mapRadiusFlag: no photon map " + std::to_string(map));
     }
-    throw std::logic_error("mapRadiusFlag: no photon map " + std::to_string(map));
+    return kFlags[map];
 }
 
 const char* toString(Estimator e) { return nameOf(kEstimators, e); }

@@ -1,5 +1,6 @@
-// Choosing a backend by name. "auto" takes CUDA if a CUDA device exists, else Vulkan on a hardware
-// GPU, else the CPU (lavapipe, software Vulkan, is slower than the CPU backend: only when asked for).
+// The library face's device factory: a backend by name. "auto" takes CUDA if a CUDA device exists,
+// else Vulkan on a hardware GPU, else the CPU (lavapipe, software Vulkan, is slower than the CPU
+// backend: only when asked for). Free of the command line: programs, bindings and tests use it.
 #pragma once
 
 #include <memory>

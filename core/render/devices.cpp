@@ -1,4 +1,4 @@
-#include "backends.h"
+#include "core/render/devices.h"
 
 #include "core/system/error.h"
 #include "cpu/cpu_backend.h"
