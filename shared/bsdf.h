@@ -20,25 +20,29 @@ PH_FN vec3 evalBsdf(PH_IN(Material) m, vec3 wo, vec3 wi, vec3 n) {
     if (cosI <= 0.0f || cosO <= 0.0f) {
         return vec3(0.0f);
     }
+    // The gather evaluates this for every photon: the Lambertian term every type shares (the delta
+    // materials and emitters have albedo 0), then a switch with three targets (one that returned
+    // from each of the seven cases cost the CUDA gather 14% on an H100, docs/performance.md).
+    vec3 f = m.albedo * INV_PI;
     PH_COVERS(MATERIAL_TYPE_COUNT, 7u);
     switch (m.type) {
-        case MATERIAL_DIFFUSE:
-        case MATERIAL_REFLECTIVE:  // the Lambertian base under the coat
-            return m.albedo * INV_PI;
+        case MATERIAL_PBR:
+            return evalPbr(m, wo, wi, n, cosO, cosI);
         case MATERIAL_GLOSSY: {
             vec3 h = unitVector(wi + wo);
             float alpha = m.roughness;
             float g = ggxG1(cosO, alpha) * ggxG1(cosI, alpha);
-            return m.albedo * INV_PI + m.specular * (ggxD(dot(h, n), alpha) * g / (4.0f * cosO * cosI));
+            f += m.specular * (ggxD(dot(h, n), alpha) * g / (4.0f * cosO * cosI));
+            break;
         }
-        case MATERIAL_PBR:
-            return evalPbr(m, wo, wi, n, cosO, cosI);
-        case MATERIAL_MIRROR:
+        case MATERIAL_DIFFUSE:
+        case MATERIAL_REFLECTIVE:  // the Lambertian base under the coat
+        case MATERIAL_MIRROR:      // deltas and emitters: albedo 0, nothing to evaluate
         case MATERIAL_GLASS:
         case MATERIAL_EMITTER:
-            break;  // deltas, or nothing: no density to evaluate
+            break;
     }
-    return vec3(0.0f);
+    return f;
 }
 
 // The mirror coat of a reflective material (nf: the shading normal on wo's side): its mirror
