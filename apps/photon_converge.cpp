@@ -13,6 +13,7 @@
 //   photon-converge --compare image.pfm --reference ref.pfm     (one image: its error)
 //   photon-converge scenes/cornell.json --camera-path orbit:20 --backend cuda  (a moving view: apps/orbit_error.h)
 #include <cstdio>
+#include <functional>
 #include <sstream>
 
 #include <CLI/CLI.hpp>
@@ -107,8 +108,8 @@ std::vector<double> parseTimes(const std::string& text) {
     return times;
 }
 
-int run(int argc, char** argv) {
-    CLI::App app{"Error against time: each estimator's image against a converged reference", "photon-converge"};
+// What the command line gives.
+struct ConvergeOptions {
     std::string scenePath;
     std::string referencePath;
     std::string comparePath;
@@ -121,93 +122,160 @@ int run(int argc, char** argv) {
     std::uint32_t maxFrames = 256;
     BackendOptions options;
     std::vector<std::string> overrides;
-    app.add_option("scene", scenePath, "Scene file (its render settings, then the options below)")->check(kFileName);
-    app.add_option("--reference", referencePath, "The converged image (.pfm or .exr); not with --camera-path")->check(kFileName);
-    app.add_option("--compare", comparePath, "Only compare this image (.pfm or .exr) with the reference")->check(kFileName);
-    app.add_option("--backend", backendName, "auto|cpu|cuda|vulkan")->check(CLI::IsMember({"auto", "cpu", "cuda", "vulkan"}));
-    app.add_option("--device", options.device, "GPU to use: index or part of its name");
-    app.add_option("--estimators", estimators, "Comma-separated estimators to measure");
-    app.add_option("--frames", maxFrames, "Frames of each estimator; checkpoints at 1, 2, 4, ... and this")
-        ->check(CLI::Range(1u, 1000000u));
-    app.add_option("--window", windowText, "The caustic window: auto[:H] about the reference's brightest pixel, or x0,y0,x1,y1");
-    app.add_option("--set", overrides, "KEY=VALUE: a render setting of the scene file (photons, width, seed, ...)");
-    app.add_option("--json", jsonPath, "Write the measurements as JSON")->check(kFileName);
-    app.add_option("--times", timesText,
-                   "Checkpoints in milliseconds of stage time, e.g. 16,33,100,400 (in place of frames 1, 2, 4, ...; "
-                   "--frames still caps the frames)");
-    app.add_option("--images", imagesDir, "Write each checkpoint's images as PFM into this folder")->check(kFileName);
     std::string cameraPath;
     OrbitMeasurement orbit;
-    app.add_option("--camera-path", cameraPath,
+};
+
+void addOptions(CLI::App& app, ConvergeOptions& o) {
+    app.add_option("scene", o.scenePath, "Scene file (its render settings, then the options below)")->check(kFileName);
+    app.add_option("--reference", o.referencePath, "The converged image (.pfm or .exr); not with --camera-path")->check(kFileName);
+    app.add_option("--compare", o.comparePath, "Only compare this image (.pfm or .exr) with the reference")->check(kFileName);
+    app.add_option("--backend", o.backendName, "auto|cpu|cuda|vulkan")->check(CLI::IsMember({"auto", "cpu", "cuda", "vulkan"}));
+    app.add_option("--device", o.options.device, "GPU to use: index or part of its name");
+    app.add_option("--estimators", o.estimators, "Comma-separated estimators to measure");
+    app.add_option("--frames", o.maxFrames, "Frames of each estimator; checkpoints at 1, 2, 4, ... and this")
+        ->check(CLI::Range(1u, 1000000u));
+    app.add_option("--window", o.windowText, "The caustic window: auto[:H] about the reference's brightest pixel, or x0,y0,x1,y1");
+    app.add_option("--set", o.overrides, "KEY=VALUE: a render setting of the scene file (photons, width, seed, ...)");
+    app.add_option("--json", o.jsonPath, "Write the measurements as JSON")->check(kFileName);
+    app.add_option("--times", o.timesText,
+                   "Checkpoints in milliseconds of stage time, e.g. 16,33,100,400 (in place of frames 1, 2, 4, ...; "
+                   "--frames still caps the frames)");
+    app.add_option("--images", o.imagesDir, "Write each checkpoint's images as PFM into this folder")->check(kFileName);
+    app.add_option("--camera-path", o.cameraPath,
                    "orbit:SECONDS: the error while the camera moves, restarting and reprojecting, against references "
                    "rendered at sample frames' cameras (no --reference)");
-    app.add_option("--path-frames", orbit.frames, "--camera-path: frames along it, 1/60 s apart")->check(CLI::Range(2u, 100000u));
-    app.add_option("--samples", orbit.samples, "--camera-path: frames compared, evenly spread")->check(CLI::Range(1u, 1000u));
-    app.add_option("--reference-frames", orbit.referenceFrames, "--camera-path: frames of each sample's reference")
+    app.add_option("--path-frames", o.orbit.frames, "--camera-path: frames along it, 1/60 s apart")->check(CLI::Range(2u, 100000u));
+    app.add_option("--samples", o.orbit.samples, "--camera-path: frames compared, evenly spread")->check(CLI::Range(1u, 1000u));
+    app.add_option("--reference-frames", o.orbit.referenceFrames, "--camera-path: frames of each sample's reference")
         ->check(CLI::Range(1u, 1000000u));
+}
+
+// --camera-path: the error while the camera moves (apps/orbit_error.h).
+void runOrbit(const ConvergeOptions& o) {
+    OrbitMeasurement orbit = o.orbit;
+    orbit.path = parseCameraPath(o.cameraPath, "--camera-path");
+    orbit.imagesDir = o.imagesDir;
+    if (!o.referencePath.empty() || !o.comparePath.empty() || o.scenePath.empty()) {
+        throw InputError("--camera-path: give a scene and no --reference or --compare (it renders its own references)");
+    }
+    if (!o.jsonPath.empty()) {
+        checkOutputPath(o.jsonPath, "JSON");
+    }
+    Scene scene = loadSceneFile(o.scenePath);
+    RenderSettings s = scene.render;
+    applyOverrides(s, o.overrides);
+    chooseDefaults(s, true);
+    chooseInteractive(s);
+    chooseSpectral(s, scene);
+    auto make = [&] { return createBackend(o.backendName, o.options); };
+    choosePhotons(s, make()->runsOnCpu());
+    validateSettings(s);
+    nlohmann::json out = measureOrbit(make, scene, s, orbit);
+    out["scene"] = scene.name;
+    out["photons_per_frame"] = s.photons;
+    if (!o.jsonPath.empty()) {
+        writeOutputFile(o.jsonPath, out.dump(2) + "\n", "JSON");
+    }
+}
+
+// An image's error against the reference, and its quality measures.
+using Measure = std::function<std::pair<ImageError, Quality>(const Image&)>;
+
+// Renders up to --frames frames with `s` on `backend` and measures the image (and the denoised
+// one, with the denoiser on) at every checkpoint; returns the checkpoints' rows.
+nlohmann::json measureCheckpoints(Backend& backend, const RenderSettings& s, const std::string& name,
+                                  const ConvergeOptions& o, const std::vector<double>& times, const Measure& measure) {
+    double ms = 0.0;
+    std::uint32_t next = 1;
+    std::size_t nextTime = 0;
+    nlohmann::json rows = nlohmann::json::array();
+    for (std::uint32_t f = 1; f <= o.maxFrames; ++f) {
+        backend.renderFrame();
+        ms += backend.lastFrameStats().ms.total();
+        bool checkpoint = times.empty() ? f == next || f == o.maxFrames : ms >= times[nextTime] || f == o.maxFrames;
+        if (!checkpoint) {
+            continue;
+        }
+        std::string label = name + ", " + std::to_string(f);
+        Image raw = backend.rawImage();
+        auto [e, q] = measure(raw);
+        printError(label, ms, e, q);
+        nlohmann::json row = errorJson(e, q);
+        row["frames"] = f;
+        row["ms"] = ms;
+        if (!o.imagesDir.empty()) {
+            writeImage(o.imagesDir + "/" + name + "-" + std::to_string(f) + ".pfm", raw, 0.0f, Tonemap::Clamp);
+        }
+        if (denoises(s)) {
+            Image denoised = backend.image();
+            double denoiseMs = backend.lastFrameStats().ms[STAGE_DENOISE];
+            auto [de, dq] = measure(denoised);
+            printError(label + " denoised", ms + denoiseMs, de, dq);
+            row["denoised"] = errorJson(de, dq);
+            row["denoise_ms"] = denoiseMs;
+            if (!o.imagesDir.empty()) {
+                writeImage(o.imagesDir + "/" + name + "-" + std::to_string(f) + "-denoised.pfm", denoised, 0.0f,
+                           Tonemap::Clamp);
+            }
+        }
+        rows.push_back(row);
+        next *= 2;
+        while (nextTime < times.size() && ms >= times[nextTime]) {
+            ++nextTime;  // a frame longer than the gap between checkpoints passes several
+        }
+        if (!times.empty() && nextTime == times.size()) {
+            break;
+        }
+    }
+    return rows;
+}
+
+int run(int argc, char** argv) {
+    CLI::App app{"Error against time: each estimator's image against a converged reference", "photon-converge"};
+    ConvergeOptions o;
+    addOptions(app, o);
     if (int code = parseCommandLine(app, argc, argv); code >= 0) {
         return code;
     }
-    if (!cameraPath.empty()) {
-        orbit.path = parseCameraPath(cameraPath, "--camera-path");
-        orbit.imagesDir = imagesDir;
-        if (!referencePath.empty() || !comparePath.empty() || scenePath.empty()) {
-            throw InputError("--camera-path: give a scene and no --reference or --compare (it renders its own references)");
-        }
-        if (!jsonPath.empty()) {
-            checkOutputPath(jsonPath, "JSON");
-        }
-        Scene scene = loadSceneFile(scenePath);
-        RenderSettings s = scene.render;
-        applyOverrides(s, overrides);
-        chooseDefaults(s, true);
-        chooseInteractive(s);
-        chooseSpectral(s, scene);
-        auto make = [&] { return createBackend(backendName, options); };
-        choosePhotons(s, make()->runsOnCpu());
-        validateSettings(s);
-        nlohmann::json out = measureOrbit(make, scene, s, orbit);
-        out["scene"] = scene.name;
-        out["photons_per_frame"] = s.photons;
-        if (!jsonPath.empty()) {
-            writeOutputFile(jsonPath, out.dump(2) + "\n", "JSON");
-        }
+    if (!o.cameraPath.empty()) {
+        runOrbit(o);
         return 0;
     }
-    if (referencePath.empty()) {
+    if (o.referencePath.empty()) {
         throw InputError("--reference is required (or --camera-path)");
     }
-    Image reference = readImage(referencePath);
-    Window window = parseWindow(windowText, reference);
-    std::vector<double> times = parseTimes(timesText);
+    Image reference = readImage(o.referencePath);
+    Window window = parseWindow(o.windowText, reference);
+    std::vector<double> times = parseTimes(o.timesText);
     QualityMasks masks(reference);
-    std::printf("reference %s: %ux%u, window [%u, %u) x [%u, %u)\n", referencePath.c_str(), reference.width,
+    std::printf("reference %s: %ux%u, window [%u, %u) x [%u, %u)\n", o.referencePath.c_str(), reference.width,
                 reference.height, window.x0, window.x1, window.y0, window.y1);
     std::printf("%-34s %10s %9s %9s %8s %8s %9s %9s %8s %8s %7s\n", "estimator, frames", "time ms", "rmse", "outside",
                 "peak", "energy", "away", "edges", "focus E", "focus pk", "ssim");
-    auto measure = [&](const Image& image) {
+    Measure measure = [&](const Image& image) {
         return std::pair{compareWithReference(image, reference, window), measureQuality(image, reference, masks)};
     };
-    if (!comparePath.empty()) {
-        auto [e, q] = measure(readImage(comparePath));
-        printError(comparePath, 0.0, e, q);
+    if (!o.comparePath.empty()) {
+        auto [e, q] = measure(readImage(o.comparePath));
+        printError(o.comparePath, 0.0, e, q);
         return 0;
     }
-    if (scenePath.empty()) {
+    if (o.scenePath.empty()) {
         throw InputError("a scene is needed (or --compare IMAGE)");
     }
-    if (!jsonPath.empty()) {
-        checkOutputPath(jsonPath, "JSON");
+    if (!o.jsonPath.empty()) {
+        checkOutputPath(o.jsonPath, "JSON");
     }
-    Scene scene = loadSceneFile(scenePath);
+    Scene scene = loadSceneFile(o.scenePath);
     RenderSettings base = scene.render;
-    applyOverrides(base, overrides);
+    applyOverrides(base, o.overrides);
     if (base.width != reference.width || base.height != reference.height) {
-        throw InputError("--reference: " + referencePath + " is " + std::to_string(reference.width) + "x" +
+        throw InputError("--reference: " + o.referencePath + " is " + std::to_string(reference.width) + "x" +
                          std::to_string(reference.height) + ", the render " + std::to_string(base.width) + "x" +
                          std::to_string(base.height));
     }
-    std::unique_ptr<Backend> backend = createBackend(backendName, options);
+    std::unique_ptr<Backend> backend = createBackend(o.backendName, o.options);
     choosePhotons(base, backend->runsOnCpu());
     chooseSpectral(base, scene);
     backend->setScene(scene);
@@ -217,56 +285,14 @@ int run(int argc, char** argv) {
     out["device"] = backend->deviceName();
     out["photons_per_frame"] = base.photons;
     out["window"] = {window.x0, window.y0, window.x1, window.y1};
-    for (const std::string& name : splitList(estimators)) {
+    for (const std::string& name : splitList(o.estimators)) {
         RenderSettings s = base;
         setSetting(s, *findSetting("estimator"), name, "--estimators");
         backend->setSettings(s);
-        double ms = 0.0;
-        std::uint32_t next = 1;
-        std::size_t nextTime = 0;
-        nlohmann::json rows = nlohmann::json::array();
-        for (std::uint32_t f = 1; f <= maxFrames; ++f) {
-            backend->renderFrame();
-            ms += backend->lastFrameStats().ms.total();
-            bool checkpoint = times.empty() ? f == next || f == maxFrames : ms >= times[nextTime] || f == maxFrames;
-            if (!checkpoint) {
-                continue;
-            }
-            std::string label = name + ", " + std::to_string(f);
-            Image raw = backend->rawImage();
-            auto [e, q] = measure(raw);
-            printError(label, ms, e, q);
-            nlohmann::json row = errorJson(e, q);
-            row["frames"] = f;
-            row["ms"] = ms;
-            if (!imagesDir.empty()) {
-                writeImage(imagesDir + "/" + name + "-" + std::to_string(f) + ".pfm", raw, 0.0f, Tonemap::Clamp);
-            }
-            if (denoises(s)) {
-                Image denoised = backend->image();
-                double denoiseMs = backend->lastFrameStats().ms[STAGE_DENOISE];
-                auto [de, dq] = measure(denoised);
-                printError(label + " denoised", ms + denoiseMs, de, dq);
-                row["denoised"] = errorJson(de, dq);
-                row["denoise_ms"] = denoiseMs;
-                if (!imagesDir.empty()) {
-                    writeImage(imagesDir + "/" + name + "-" + std::to_string(f) + "-denoised.pfm", denoised, 0.0f,
-                               Tonemap::Clamp);
-                }
-            }
-            rows.push_back(row);
-            next *= 2;
-            while (nextTime < times.size() && ms >= times[nextTime]) {
-                ++nextTime;  // a frame longer than the gap between checkpoints passes several
-            }
-            if (!times.empty() && nextTime == times.size()) {
-                break;
-            }
-        }
-        out["estimators"][name] = rows;
+        out["estimators"][name] = measureCheckpoints(*backend, s, name, o, times, measure);
     }
-    if (!jsonPath.empty()) {
-        writeOutputFile(jsonPath, out.dump(2) + "\n", "JSON");
+    if (!o.jsonPath.empty()) {
+        writeOutputFile(o.jsonPath, out.dump(2) + "\n", "JSON");
     }
     return 0;
 }

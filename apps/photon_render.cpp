@@ -88,6 +88,72 @@ nlohmann::json backendStats(Backend& backend) {
     return j;
 }
 
+// Where the render goes, and what it says on the way.
+struct Outputs {
+    std::string image;          // --output
+    std::string stats;          // --stats; empty: none
+    std::string source;         // the scene as messages name it
+    bool quiet = false;         // --quiet
+};
+
+// A warning on stderr, unless --quiet.
+void warn(const Outputs& out, const std::string& warning) {
+    if (!out.quiet) {
+        std::fprintf(stderr, "%s\n", printable(warning).c_str());
+    }
+}
+
+// Writes the image (and the stats) of a finished or interrupted render and says how it went;
+// returns the exit code.
+int writeResult(const RenderResult& result, const RenderSettings& settings, const Outputs& out,
+                std::vector<std::string> warnings, nlohmann::json stats) {
+    const std::string& output = out.image;
+    const std::string& statsPath = out.stats;
+    // Interrupted: what was rendered is written as it would have been at the end.
+    int interrupted = interruptSignal();
+    const Image& image = result.image;
+    std::uint32_t frames = static_cast<std::uint32_t>(result.times.size());
+    double wall = result.seconds;
+    // An EXR file gets the image without the denoiser beside the denoised one, and the AOVs.
+    std::vector<ExrLayer> layers;
+    if (!result.raw.pixels.empty()) {
+        layers.push_back({"raw", &result.raw, "RGB"});
+    }
+    if (settings.aov) {
+        for (const ExrLayer& layer : exrLayers(result.aovs)) {
+            layers.push_back(layer);
+        }
+    }
+    // A black image with exit 0 looks like a bug; say so, with the likely reasons.
+    if (double lit = litFraction(image, settings.exposure); lit < kNearBlackFraction && interrupted == 0) {
+        char share[32];
+        std::snprintf(share, sizeof share, "%.1f%%", 100.0 * lit);
+        warnings.push_back(out.source + ": the image is nearly black: " + share + " of its pixels show (at --exposure " +
+                           formatNumber(settings.exposure) + "); do the lights reach what the camera sees?");
+        warn(out, warnings.back());
+    }
+    writeImage(output, image, settings.exposure, settings.tonemap, layers);
+    if (!statsPath.empty()) {
+        stats["frames"] = frames;
+        stats["wall_seconds"] = wall;
+        stats["stages"] = stageJson(result.times);
+        stats["warnings"] = warnings;
+        writeOutputFile(statsPath, stats.dump(2) + "\n", "stats");
+    }
+    if (interrupted != 0) {
+        std::fprintf(stderr, "photon-render: %s: stopped after %u frame%s; the image so far is in %s%s%s\n",
+                     interrupted == SIGINT ? "interrupted" : "terminated", frames, frames == 1 ? "" : "s",
+                     printable(output).c_str(), statsPath.empty() ? "" : ", the stats in ", printable(statsPath).c_str());
+        return 128 + interrupted;
+    }
+    if (!out.quiet) {
+        std::fprintf(stderr, "%s on %s: %ux%u, %u frame%s in %.2f s (%.1f ms/frame), photons stored %s -> %s\n",
+                     result.backend.c_str(), result.device.c_str(), settings.width, settings.height, frames,
+                     frames == 1 ? "" : "s", wall, 1000.0 * wall / frames, result.last.storedList().c_str(), output.c_str());
+    }
+    return 0;
+}
+
 int run(int argc, char** argv) {
     installInterruptHandlers();
     CLI::App app{"Photon: renders a scene with photon mapping", "photon-render"};
@@ -143,14 +209,10 @@ int run(int argc, char** argv) {
 
     // Named by the file: a scene file's "name" may be empty, or say nothing of where it came from.
     std::string source = app.count("scene") == 0 ? "<embedded cornell.json>" : scenePath;
+    Outputs out{output, statsPath, source, quiet};
     std::vector<std::string> warnings = scene.warnings;
-    auto warn = [&](const std::string& warning) {
-        if (!quiet) {
-            std::fprintf(stderr, "%s\n", printable(warning).c_str());
-        }
-    };
     for (const std::string& warning : warnings) {
-        warn(warning);
+        warn(out, warning);
     }
     RenderJob job;
     job.backend = backendName;
@@ -169,49 +231,7 @@ int run(int argc, char** argv) {
         }
     };
     RenderResult result = render(std::move(scene), settings, job, observer);
-    // Interrupted: what was rendered is written as it would have been at the end.
-    int interrupted = interruptSignal();
-    const Image& image = result.image;
-    std::uint32_t frames = static_cast<std::uint32_t>(result.times.size());
-    double wall = result.seconds;
-    // An EXR file gets the image without the denoiser beside the denoised one, and the AOVs.
-    std::vector<ExrLayer> layers;
-    if (!result.raw.pixels.empty()) {
-        layers.push_back({"raw", &result.raw, "RGB"});
-    }
-    if (settings.aov) {
-        for (const ExrLayer& layer : exrLayers(result.aovs)) {
-            layers.push_back(layer);
-        }
-    }
-    // A black image with exit 0 looks like a bug; say so, with the likely reasons.
-    if (double lit = litFraction(image, settings.exposure); lit < kNearBlackFraction && interrupted == 0) {
-        char share[32];
-        std::snprintf(share, sizeof share, "%.1f%%", 100.0 * lit);
-        warnings.push_back(source + ": the image is nearly black: " + share + " of its pixels show (at --exposure " +
-                           formatNumber(settings.exposure) + "); do the lights reach what the camera sees?");
-        warn(warnings.back());
-    }
-    writeImage(output, image, settings.exposure, settings.tonemap, layers);
-    if (!statsPath.empty()) {
-        stats["frames"] = frames;
-        stats["wall_seconds"] = wall;
-        stats["stages"] = stageJson(result.times);
-        stats["warnings"] = warnings;
-        writeOutputFile(statsPath, stats.dump(2) + "\n", "stats");
-    }
-    if (interrupted != 0) {
-        std::fprintf(stderr, "photon-render: %s: stopped after %u frame%s; the image so far is in %s%s%s\n",
-                     interrupted == SIGINT ? "interrupted" : "terminated", frames, frames == 1 ? "" : "s",
-                     printable(output).c_str(), statsPath.empty() ? "" : ", the stats in ", printable(statsPath).c_str());
-        return 128 + interrupted;
-    }
-    if (!quiet) {
-        std::fprintf(stderr, "%s on %s: %ux%u, %u frame%s in %.2f s (%.1f ms/frame), photons stored %s -> %s\n",
-                     result.backend.c_str(), result.device.c_str(), settings.width, settings.height, frames,
-                     frames == 1 ? "" : "s", wall, 1000.0 * wall / frames, result.last.storedList().c_str(), output.c_str());
-    }
-    return 0;
+    return writeResult(result, settings, out, warnings, std::move(stats));
 }
 
 }  // namespace
