@@ -1,0 +1,257 @@
+// The Python module `photon`: the library face (core/render) for scripts. Scenes come as a path,
+// JSON text or a dict in the scene format; settings as keyword arguments named as in scene files'
+// "render" block (the CLI's long options with '_' for '-'), parsed and checked by the settings
+// table itself (core/settings/setting_specs.h), so no setting is spelled here. Images come back
+// as NumPy arrays (height, width, 3) of float32 linear radiance. Bad input raises ValueError and a
+// runtime failure RuntimeError, with the messages the CLI prints; rendering releases the GIL, and
+// Ctrl-C raises KeyboardInterrupt after the frame in flight.
+#include <pybind11/functional.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+#include <string>
+
+#include "core/frame/scene_settings.h"
+#include "core/image/image.h"
+#include "core/loaders/model_loader.h"
+#include "core/loaders/scene_loader.h"
+#include "core/render/devices.h"
+#include "core/render/render.h"
+#include "core/settings/setting_specs.h"
+#include "core/system/error.h"
+
+namespace py = pybind11;
+
+namespace photon {
+namespace {
+
+// What render() and Renderer take besides the render settings.
+struct Options {
+    RenderSettings settings;
+    RenderJob job;
+};
+
+// A scene from a path (a scene or model file), JSON text, or a dict in the scene format.
+Scene loadScene(const py::object& scene) {
+    if (py::isinstance<py::dict>(scene)) {
+        std::string text = py::module_::import("json").attr("dumps")(scene).cast<std::string>();
+        return loadSceneJson(text, "<dict>", "", defaultFileReader());
+    }
+    if (!py::isinstance<py::str>(scene) && !py::hasattr(scene, "__fspath__")) {
+        throw InputError("scene: expected a path, JSON text or a dict");
+    }
+    std::string text = py::str(scene.is_none() ? py::str("") : py::module_::import("os").attr("fspath")(scene));
+    std::size_t first = text.find_first_not_of(" \t\r\n");
+    if (first != std::string::npos && text[first] == '{') {
+        return loadSceneJson(text, "<json>", "", defaultFileReader());
+    }
+    return loadSceneFile(text);
+}
+
+// The keyword arguments: backend, device, time, and every render setting by its scene-file key.
+Options readOptions(const Scene& scene, const py::kwargs& kwargs) {
+    Options o;
+    o.settings = scene.render;
+    bool framesGiven = isGiven(o.settings, "frames");
+    for (const auto& [key, value] : kwargs) {
+        std::string name = py::str(key);
+        if (name == "backend") {
+            o.job.backend = py::str(value);
+            continue;
+        }
+        if (name == "device") {
+            o.job.device.device = py::str(value);
+            continue;
+        }
+        if (name == "time") {
+            o.job.seconds = parseNumber(py::str(value), Range{0.001, 1e6}, "time");
+            continue;
+        }
+        const SettingSpec* spec = findSetting(name);
+        if (spec == nullptr || name != spec->key) {
+            throw InputError(name + ": no such setting (the keys of a scene file's \"render\" block, as photon-render --help lists them)");
+        }
+        std::string text = py::isinstance<py::bool_>(value) ? (value.cast<bool>() ? "true" : "false")
+                                                            : std::string(py::str(value));
+        setSetting(o.settings, *spec, text, name);
+        framesGiven |= name == "frames";
+    }
+    o.job.framesCap = framesGiven;
+    bool timed = o.job.seconds > 0.0;
+    chooseDefaults(o.settings, timed);
+    chooseSpectral(o.settings, scene);
+    validateSettings(o.settings);
+    return o;
+}
+
+py::array_t<float> toArray(const Image& image) {
+    py::array_t<float> out({py::ssize_t(image.height), py::ssize_t(image.width), py::ssize_t(3)});
+    auto view = out.mutable_unchecked<3>();
+    for (std::uint32_t y = 0; y < image.height; ++y) {
+        for (std::uint32_t x = 0; x < image.width; ++x) {
+            const glm::vec4& p = image.at(x, y);
+            view(y, x, 0) = p.x;
+            view(y, x, 1) = p.y;
+            view(y, x, 2) = p.z;
+        }
+    }
+    return out;
+}
+
+Image fromArray(const py::array_t<float, py::array::c_style | py::array::forcecast>& array) {
+    if (array.ndim() != 3 || array.shape(2) < 3 || array.shape(0) <= 0 || array.shape(1) <= 0) {
+        throw InputError("image: expected an array of shape (height, width, 3)");
+    }
+    auto view = array.unchecked<3>();
+    Image image(std::uint32_t(array.shape(1)), std::uint32_t(array.shape(0)));
+    for (std::uint32_t y = 0; y < image.height; ++y) {
+        for (std::uint32_t x = 0; x < image.width; ++x) {
+            image.at(x, y) = glm::vec4(view(y, x, 0), view(y, x, 1), view(y, x, 2), 1.0f);
+        }
+    }
+    return image;
+}
+
+// Whether Python has a signal to raise (Ctrl-C): asked between frames, with the GIL.
+bool interrupted() {
+    py::gil_scoped_acquire gil;
+    return PyErr_CheckSignals() != 0;
+}
+
+py::array_t<float> renderScene(const py::object& sceneArg, const py::kwargs& kwargs) {
+    Scene scene = loadScene(sceneArg);
+    Options o = readOptions(scene, kwargs);
+    if (o.job.seconds == 0.0 && !o.job.framesCap) {
+        o.job.seconds = kDefaultRenderSeconds;  // as photon-render: no length given anywhere
+    }
+    RenderObserver observer;
+    observer.cancel = interrupted;
+    RenderResult result;
+    {
+        py::gil_scoped_release release;
+        result = render(std::move(scene), o.settings, o.job, observer);
+    }
+    if (result.cancelled) {
+        throw py::error_already_set();  // the KeyboardInterrupt PyErr_CheckSignals set
+    }
+    return toArray(result.image);
+}
+
+// Progressive rendering: a backend that keeps its frames between calls.
+class Renderer {
+public:
+    Renderer(const py::object& sceneArg, const py::kwargs& kwargs) {
+        Scene scene = loadScene(sceneArg);
+        Options o = readOptions(scene, kwargs);
+        backend_ = createBackend(o.job.backend, o.job.device);
+        choosePhotons(o.settings, backend_->runsOnCpu());
+        backend_->setScene(std::move(scene));
+        backend_->setSettings(o.settings);
+        backend_->prepare();
+    }
+
+    // Renders `frames` frames; `progress(frames done, of)` after each. Ctrl-C stops after the
+    // frame in flight, raising KeyboardInterrupt; the renderer stays usable.
+    std::uint32_t step(std::uint32_t frames, const std::function<void(std::uint32_t, std::uint32_t)>& progress) {
+        for (std::uint32_t f = 0; f < frames; ++f) {
+            {
+                py::gil_scoped_release release;
+                backend_->renderFrame();
+            }
+            frames_ += 1;
+            if (progress) {
+                progress(f + 1, frames);
+            }
+            if (PyErr_CheckSignals() != 0) {
+                throw py::error_already_set();
+            }
+        }
+        return frames_;
+    }
+
+    py::array_t<float> image() {
+        Image image;
+        {
+            py::gil_scoped_release release;
+            image = backend_->image();
+        }
+        return toArray(image);
+    }
+
+    py::dict aovs() {
+        if (!backend_->settings().aov) {
+            throw InputError("aovs: the renderer keeps no auxiliary images (Renderer(..., aov=True))");
+        }
+        AovImages a = aovImages(backend_->readAovs(), backend_->settings().width, backend_->settings().height, frames_);
+        py::dict out;
+        out["albedo"] = toArray(a.albedo);
+        out["normal"] = toArray(a.normal);
+        out["depth"] = toArray(a.depth);
+        out["variance"] = toArray(a.variance);
+        return out;
+    }
+
+    py::dict stats() const {
+        const FrameStats& last = backend_->lastFrameStats();
+        py::dict out;
+        out["backend"] = backend_->name();
+        out["device"] = backend_->deviceName();
+        out["frames"] = frames_;
+        py::dict stages;
+        for (const StageInfo& stage : kStages) {
+            stages[py::str(stage.name)] = last.ms[stage.id];
+        }
+        out["stage_ms"] = stages;
+        py::dict photons;
+        for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
+            photons[py::str(kMapNames[m])] =
+                py::dict(py::arg("emitted_paths") = last.emitted[m], py::arg("stored") = last.stored[m],
+                         py::arg("capacity") = last.capacity[m]);
+        }
+        out["photons"] = photons;
+        return out;
+    }
+
+private:
+    std::unique_ptr<Backend> backend_;
+    std::uint32_t frames_ = 0;
+};
+
+}  // namespace
+}  // namespace photon
+
+PYBIND11_MODULE(photon, m) {
+    using namespace photon;
+    m.doc() = "Photon: GPU photon mapping (CUDA, Vulkan, CPU) from Python; docs/python.md";
+    py::register_exception_translator([](std::exception_ptr p) {
+        try {
+            if (p) {
+                std::rethrow_exception(p);
+            }
+        } catch (const InputError& e) {
+            PyErr_SetString(PyExc_ValueError, printable(e.what()).c_str());
+        } catch (const RuntimeError& e) {
+            PyErr_SetString(PyExc_RuntimeError, printable(e.what()).c_str());
+        }
+    });
+    m.def("render", &renderScene, py::arg("scene"),
+          "Renders a scene (a path, JSON text or a dict) and returns its image, (height, width, 3) float32 "
+          "linear radiance. Keyword arguments: backend, device, time (seconds), and any render setting by its "
+          "scene-file key (photons, frames, estimator, seed, deterministic, ...).");
+    m.def("devices", &compiledBackends, "The backends compiled into this module (cpu, cuda, vulkan).");
+    m.def(
+        "write_image",
+        [](const std::string& path, const py::array_t<float, py::array::c_style | py::array::forcecast>& array,
+           float exposure) { writeImage(path, fromArray(array), exposure, Tonemap::Aces); },
+        py::arg("path"), py::arg("image"), py::arg("exposure") = 0.0f,
+        "Writes an image as photon-render does, by extension: .png (tone-mapped sRGB), .exr or .pfm (linear).");
+    py::class_<Renderer>(m, "Renderer", "Progressive rendering: frames accumulate across step() calls.")
+        .def(py::init<const py::object&, const py::kwargs&>(), py::arg("scene"))
+        .def("step", &Renderer::step, py::arg("frames") = 1, py::arg("progress") = nullptr,
+             "Renders frames; returns the frames accumulated so far.")
+        .def("image", &Renderer::image, "The accumulated image (denoised where the settings say).")
+        .def("aovs", &Renderer::aovs, "Albedo, normal, depth and variance images (with aov=True).")
+        .def("stats", &Renderer::stats, "The last frame's stage times and photon counts.");
+}

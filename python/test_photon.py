@@ -1,0 +1,119 @@
+"""The Python module against photon-render: the same image bit for bit, scenes as dicts and JSON
+text, the CLI's messages as exceptions, progressive rendering. Run by ctest (python/CMakeLists.txt)
+with PYTHONPATH at the module and PHOTON_RENDER, PHOTON_SCENES_DIR set."""
+import json
+import os
+import signal
+import subprocess
+
+import numpy as np
+import pytest
+
+import photon
+
+SCENES = os.environ.get("PHOTON_SCENES_DIR", os.path.join(os.path.dirname(__file__), "..", "scenes"))
+CORNELL = os.path.join(SCENES, "cornell.json")
+SMALL = dict(backend="cpu", width=48, height=36, photons=4000, frames=2, deterministic=True, seed=7)
+
+
+def read_pfm(path):
+    with open(path, "rb") as f:
+        kind = f.readline().strip()
+        width, height = map(int, f.readline().split())
+        scale = float(f.readline())
+        data = np.frombuffer(f.read(), dtype="<f4" if scale < 0 else ">f4")
+    assert kind == b"PF"
+    return data.reshape(height, width, 3)[::-1]  # PFM rows run from the bottom
+
+
+def test_render_equals_photon_render_bit_for_bit(tmp_path):
+    image = photon.render(CORNELL, **SMALL)
+    assert image.shape == (36, 48, 3) and image.dtype == np.float32
+    out = tmp_path / "cli.pfm"
+    args = [os.environ["PHOTON_RENDER"], CORNELL, "-q", "-o", str(out)]
+    for key, value in SMALL.items():
+        flag = "--" + key.replace("_", "-")
+        args += [flag] if value is True else [flag, str(value)]
+    subprocess.run(args, check=True)
+    assert np.array_equal(image, read_pfm(out))
+
+
+def test_a_dict_and_json_text_equal_the_file():
+    with open(CORNELL) as f:
+        scene = json.load(f)
+    from_file = photon.render(CORNELL, **SMALL)
+    assert np.array_equal(photon.render(scene, **SMALL), from_file)
+    assert np.array_equal(photon.render(json.dumps(scene), **SMALL), from_file)
+
+
+@pytest.mark.parametrize(
+    "scene, kwargs, message",
+    [
+        (CORNELL, dict(photons=-1), "photons: must be"),
+        (CORNELL, dict(estimator="nearest"), "estimator: unknown value"),
+        (CORNELL, dict(colour=3), "colour: no such setting"),
+        (CORNELL, dict(backend="quantum"), "unknown backend 'quantum'"),
+        (CORNELL, dict(time="soon"), "time: must be a number"),
+        ("no/such/scene.json", {}, "no/such/scene.json: cannot open"),
+        ({"camera": {}}, {}, "<dict>: /camera"),
+        ("{ not json", {}, "<json>: line 1"),
+        (42, {}, "scene: expected a path, JSON text or a dict"),
+    ],
+)
+def test_bad_input_raises_value_error_with_the_cli_message(scene, kwargs, message):
+    with pytest.raises(ValueError, match=None) as error:
+        photon.render(scene, **dict(SMALL, **kwargs))
+    assert message in str(error.value)
+
+
+def test_a_backend_that_cannot_run_raises_runtime_error():
+    # Not compiled in, or compiled in on a machine without an NVIDIA GPU: RuntimeError naming CUDA.
+    try:
+        image = photon.render(CORNELL, **dict(SMALL, backend="cuda"))
+    except RuntimeError as error:
+        assert "CUDA" in str(error)
+    else:
+        assert image.shape == (36, 48, 3)  # a GPU is here
+
+
+def test_ctrl_c_stops_after_the_frame_and_the_renderer_goes_on():
+    renderer = photon.Renderer(CORNELL, **dict(SMALL, frames=1000))
+    interrupt = lambda done, of: os.kill(os.getpid(), signal.SIGINT) if done == 2 else None
+    with pytest.raises(KeyboardInterrupt):
+        renderer.step(5, progress=interrupt)
+    assert renderer.stats()["frames"] == 2, "the frame in flight finished; none after it"
+    assert renderer.step(1) == 3
+
+
+def test_progressive_steps_continue_where_they_stopped():
+    settings = dict(SMALL, frames=1000)
+    renderer = photon.Renderer(CORNELL, **settings)
+    seen = []
+    assert renderer.step(2, progress=lambda done, of: seen.append((done, of))) == 2
+    assert seen == [(1, 2), (2, 2)]
+    assert renderer.step(1) == 3
+    whole = photon.Renderer(CORNELL, **settings)
+    whole.step(3)
+    assert np.array_equal(renderer.image(), whole.image()), "2 frames, then 1 more, are the 3 frames"
+    stats = renderer.stats()
+    assert stats["frames"] == 3 and stats["backend"] == "cpu"
+    assert stats["photons"]["global"]["stored"] > 0
+    with pytest.raises(ValueError, match="aov=True"):
+        renderer.aovs()
+    aovs = photon.Renderer(CORNELL, **dict(settings, aov=True))
+    aovs.step(1)
+    assert set(aovs.aovs()) == {"albedo", "normal", "depth", "variance"}
+
+
+def test_write_image_writes_what_photon_render_reads(tmp_path):
+    image = photon.render(CORNELL, **SMALL)
+    photon.write_image(str(tmp_path / "a.pfm"), image)
+    assert np.array_equal(read_pfm(tmp_path / "a.pfm"), image)
+    photon.write_image(str(tmp_path / "a.png"), image)
+    assert (tmp_path / "a.png").stat().st_size > 0
+    with pytest.raises(ValueError, match="unknown image format"):
+        photon.write_image(str(tmp_path / "a.bmp"), image)
+
+
+def test_devices_lists_the_cpu():
+    assert "cpu" in photon.devices()
