@@ -7,7 +7,7 @@
 
 #include "apps/cuda_launch_bench.h"
 #include "apps/render_options.h"
-#include "apps/scene_stats.h"
+#include "core/render/scene_stats.h"
 #include "core/frame/buffers.h"
 #include "core/frame/median.h"
 #include "core/system/output_file.h"

@@ -21,7 +21,7 @@
 #include "apps/interrupt.h"
 #include "apps/progress.h"
 #include "apps/render_options.h"
-#include "apps/scene_stats.h"
+#include "core/render/render_stats.h"
 #include "core/frame/median.h"
 #include "core/loaders/scene_loader.h"
 #include "core/settings/setting_specs.h"
@@ -50,42 +50,6 @@ nlohmann::json stageJson(const std::vector<StageTimes>& frames) {
     }
     stages["frame"] = {{"median_ms", median(totals)}};
     return stages;
-}
-
-// What the device knows at the end of the render; the stage times, wall time and warnings are
-// added once the image is read back.
-nlohmann::json backendStats(Backend& backend) {
-    const FrameStats& last = backend.lastFrameStats();
-    const RenderSettings& s = backend.settings();
-    nlohmann::json j;
-    j["backend"] = backend.name();
-    j["device"] = backend.deviceName();
-    j["scene"] = backend.scene().name;
-    j["scene_stats"] = sceneStatsJson(backend.scene());
-    j["width"] = s.width;
-    j["height"] = s.height;
-    j["estimator"] = toString(s.estimator);
-    PhotonMaps maps = backend.readPhotonMaps();
-    for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
-        GridStats g = gridStats(maps.cellStart[m]);
-        j["photons"][kMapNames[m]] = {{"emitted_paths", last.emitted[m]},
-                                       {"stored", last.stored[m]},
-                                       {"capacity", last.capacity[m]},
-                                       {"radius", backend.lastFrameParams().grids[m].radius}};
-        j["grid"][kMapNames[m]] = {{"kind", toString(s.grid)},
-                                    {"cells", g.cells},
-                                    {"occupied", g.occupied},
-                                    {"max_per_cell", g.maxPerCell},
-                                    {"mean_per_occupied", g.meanPerOccupied}};
-    }
-    if (backend.scene().environmentLight != NONE) {
-        // How well the bounding sphere's disks aim the environment's photons at the scene.
-        j["environment"] = {{"source", backend.scene().environment.source.empty() ? "uniform" : backend.scene().environment.source},
-                            {"photon_paths", last.environmentPaths},
-                            {"photons_hitting_the_scene", last.environmentHits},
-                            {"hit_fraction", last.environmentPaths > 0 ? double(last.environmentHits) / last.environmentPaths : 0.0}};
-    }
-    return j;
 }
 
 // Where the render goes, and what it says on the way.
@@ -227,7 +191,7 @@ int run(int argc, char** argv) {
     observer.finished = [&](Backend& backend) {
         progress.finish();
         if (!statsPath.empty()) {
-            stats = backendStats(backend);
+            stats = renderStatsJson(backend);
         }
     };
     RenderResult result = render(std::move(scene), settings, job, observer);

@@ -19,6 +19,7 @@
 #include "core/loaders/scene_loader.h"
 #include "core/render/devices.h"
 #include "core/render/render.h"
+#include "core/render/render_stats.h"
 #include "core/settings/setting_specs.h"
 #include "core/system/error.h"
 
@@ -193,25 +194,16 @@ public:
         return out;
     }
 
-    py::dict stats() const {
+    // photon-render's --stats file for the frames so far: backend, device, scene costs, each map's
+    // photons and grid (the last frame's), and the frames and the last frame's stage times.
+    py::object stats() {
+        nlohmann::json j = renderStatsJson(*backend_);
+        j["frames"] = frames_;
         const FrameStats& last = backend_->lastFrameStats();
-        py::dict out;
-        out["backend"] = backend_->name();
-        out["device"] = backend_->deviceName();
-        out["frames"] = frames_;
-        py::dict stages;
         for (const StageInfo& stage : kStages) {
-            stages[py::str(stage.name)] = last.ms[stage.id];
+            j["stage_ms"][stage.name] = last.ms[stage.id];
         }
-        out["stage_ms"] = stages;
-        py::dict photons;
-        for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
-            photons[py::str(kMapNames[m])] =
-                py::dict(py::arg("emitted_paths") = last.emitted[m], py::arg("stored") = last.stored[m],
-                         py::arg("capacity") = last.capacity[m]);
-        }
-        out["photons"] = photons;
-        return out;
+        return py::module_::import("json").attr("loads")(j.dump());
     }
 
 private:
@@ -253,5 +245,5 @@ PYBIND11_MODULE(photon, m) {
              "Renders frames; returns the frames accumulated so far.")
         .def("image", &Renderer::image, "The accumulated image (denoised where the settings say).")
         .def("aovs", &Renderer::aovs, "Albedo, normal, depth and variance images (with aov=True).")
-        .def("stats", &Renderer::stats, "The last frame's stage times and photon counts.");
+        .def("stats", &Renderer::stats, "photon-render's --stats as a dict: photons and grids of the last frame, costs.");
 }

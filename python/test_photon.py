@@ -98,6 +98,8 @@ def test_progressive_steps_continue_where_they_stopped():
     stats = renderer.stats()
     assert stats["frames"] == 3 and stats["backend"] == "cpu"
     assert stats["photons"]["global"]["stored"] > 0
+    assert stats["grid"]["global"]["occupied"] > 0, "the --stats file's grid statistics too"
+    assert stats["scene_stats"] and "gather" in stats["stage_ms"]
     with pytest.raises(ValueError, match="aov=True"):
         renderer.aovs()
     aovs = photon.Renderer(CORNELL, **dict(settings, aov=True))

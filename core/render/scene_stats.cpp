@@ -1,4 +1,4 @@
-#include "apps/scene_stats.h"
+#include "core/render/scene_stats.h"
 
 #include "shared/bindings.h"
 
