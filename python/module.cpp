@@ -43,7 +43,7 @@ Scene loadScene(const py::object& scene) {
     if (!py::isinstance<py::str>(scene) && !py::hasattr(scene, "__fspath__")) {
         throw InputError("scene: expected a path, JSON text or a dict");
     }
-    std::string text = py::str(scene.is_none() ? py::str("") : py::module_::import("os").attr("fspath")(scene));
+    std::string text = py::str(py::module_::import("os").attr("fspath")(scene));
     std::size_t first = text.find_first_not_of(" \t\r\n");
     if (first != std::string::npos && text[first] == '{') {
         return loadSceneJson(text, "<json>", "", defaultFileReader());
@@ -236,7 +236,13 @@ PYBIND11_MODULE(photon, m) {
     m.def(
         "write_image",
         [](const std::string& path, const py::array_t<float, py::array::c_style | py::array::forcecast>& array,
-           float exposure) { writeImage(path, fromArray(array), exposure, Tonemap::Aces); },
+           float exposure) {
+            Image image = fromArray(array);
+            if (!allFinite(image)) {
+                throw InputError(path + ": the image holds values that are not finite (NaN or infinity); nothing was written");
+            }
+            writeImage(path, image, exposure, Tonemap::Aces);
+        },
         py::arg("path"), py::arg("image"), py::arg("exposure") = 0.0f,
         "Writes an image as photon-render does, by extension: .png (tone-mapped sRGB), .exr or .pfm (linear).");
     py::class_<Renderer>(m, "Renderer", "Progressive rendering: frames accumulate across step() calls.")

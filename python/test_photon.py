@@ -115,6 +115,13 @@ def test_write_image_writes_what_photon_render_reads(tmp_path):
     assert (tmp_path / "a.png").stat().st_size > 0
     with pytest.raises(ValueError, match="unknown image format"):
         photon.write_image(str(tmp_path / "a.bmp"), image)
+    with pytest.raises(ValueError, match="the image path is empty"):
+        photon.write_image("", image)
+    with pytest.raises(ValueError, match="not finite"):
+        photon.write_image(str(tmp_path / "nan.pfm"), np.full((2, 2, 3), np.nan, np.float32))
+    assert not (tmp_path / "nan.pfm").exists()
+    with pytest.raises(ValueError, match=r"shape \(height, width, 3\)"):
+        photon.write_image(str(tmp_path / "flat.pfm"), np.zeros((4, 4), np.float32))
 
 
 def test_devices_lists_the_cpu():

@@ -100,6 +100,9 @@ Image readExr(const std::string& path) {
 }  // namespace
 
 ImageFormat imageFormatFor(const std::string& path) {
+    if (path.empty()) {
+        throw InputError("the image path is empty (name a .png, .exr or .pfm file)");
+    }
     std::string ext = lowerExtension(path);
     if (ext == "png") {
         return ImageFormat::Png;
