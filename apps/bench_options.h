@@ -33,7 +33,7 @@ struct BenchOptions {
     std::string imageDir = ".";
     std::uint32_t bvhBuilds = 0;
     std::string threads = "0";
-    BackendOptions options;
+    DeviceOptions options;
 };
 
 }  // namespace photon

@@ -7,20 +7,20 @@
 #include <functional>
 #include <string>
 
-#include "core/frame/backend.h"
+#include "core/frame/renderer.h"
 
 namespace photon {
 
 // Runs `measure` once per CUDA launch shape (threads per photon block, pixel tile).
 // Each shape starts from the backend's own configuration (its gridBlocks follow the device's SMs).
-void sweepLaunchShapes(Backend& backend, const std::function<void(const std::string&)>& measure);
+void sweepLaunchShapes(Renderer& backend, const std::function<void(const std::string&)>& measure);
 
-// Median host time of Backend::image() (a synchronous copy of the accumulated image), through
+// Median host time of Renderer::image() (a synchronous copy of the accumulated image), through
 // pinned memory and straight into pageable memory.
-void timeReadback(Backend& backend);
+void timeReadback(Renderer& backend);
 
 // Times primary rays alone (nearest hit, no shading) of the backend's current frame, prints the
 // median of 21 and returns rays per second (0 without CUDA).
-double timePrimaryRays(Backend& backend, std::uint32_t width, std::uint32_t height);
+double timePrimaryRays(Renderer& backend, std::uint32_t width, std::uint32_t height);
 
 }  // namespace photon

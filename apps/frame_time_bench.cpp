@@ -50,7 +50,7 @@ void printSceneCost(const std::string& name, const Scene& scene) {
 
 double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
-Row measure(Backend& backend, const Scene& scene, RenderSettings settings, std::uint32_t warmup, std::uint32_t frames,
+Row measure(Renderer& backend, const Scene& scene, RenderSettings settings, std::uint32_t warmup, std::uint32_t frames,
             Clock::time_point created, bool verbose) {
     backend.setScene(scene);
     backend.setSettings(settings);
@@ -193,7 +193,7 @@ void benchFrameTimes(const BenchOptions& o, const CaseLists& lists, Clock::time_
         if (rows.empty()) {
             std::printf("  process start to backend creation: %.1f ms\n", msSince(processStart));
         }
-        std::unique_ptr<Backend> backend = createBackend(backendName, o.options);
+        std::unique_ptr<Renderer> backend = createRenderer(backendName, o.options);
         bool cpu = backendName == "cpu";
         for (const std::string& sceneName : splitList(o.scenes)) {
             Scene scene = sceneNamed(sceneName, o.scenesDir);

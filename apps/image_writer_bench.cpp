@@ -29,7 +29,7 @@ struct Writer {
 
 }  // namespace
 
-void benchImageWriters(Backend& backend, const Scene& scene,
+void benchImageWriters(Renderer& backend, const Scene& scene,
                        const std::vector<std::pair<std::uint32_t, std::uint32_t>>& resolutions, std::uint32_t writes,
                        const std::string& folder) {
     float exposure = scene.render.exposure;

@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/frame/backend.h"
+#include "core/frame/renderer.h"
 
 namespace photon {
 
@@ -16,7 +16,7 @@ namespace photon {
 // resolution, file size, and medians of the encoding alone and of the whole file (encoding,
 // then core/system/output_file.h's atomic write: temporary file, flush to disk, rename). The files
 // are removed at the end.
-void benchImageWriters(Backend& backend, const Scene& scene,
+void benchImageWriters(Renderer& backend, const Scene& scene,
                        const std::vector<std::pair<std::uint32_t, std::uint32_t>>& resolutions, std::uint32_t writes,
                        const std::string& folder);
 

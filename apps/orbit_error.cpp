@@ -34,7 +34,7 @@ struct Run {
     double denoiseMs = 0.0;    // ... and of its denoise stage
 };
 
-Run moveAlong(Backend& backend, const Scene& scene, const RenderSettings& settings, const OrbitMeasurement& m,
+Run moveAlong(Renderer& backend, const Scene& scene, const RenderSettings& settings, const OrbitMeasurement& m,
               const std::vector<std::uint32_t>& samples) {
     backend.setDenoiseEachFrame(true);  // as a viewer: every frame is shown
     backend.setScene(scene);
@@ -69,7 +69,7 @@ Run moveAlong(Backend& backend, const Scene& scene, const RenderSettings& settin
 
 }  // namespace
 
-nlohmann::json measureOrbit(const std::function<std::unique_ptr<Backend>()>& makeBackend, const Scene& scene,
+nlohmann::json measureOrbit(const std::function<std::unique_ptr<Renderer>()>& makeBackend, const Scene& scene,
                             const RenderSettings& settings, const OrbitMeasurement& m) {
     std::vector<std::uint32_t> samples;
     for (std::uint32_t i = 1; i <= m.samples; ++i) {
@@ -81,7 +81,7 @@ nlohmann::json measureOrbit(const std::function<std::unique_ptr<Backend>()>& mak
     std::vector<Image> references;
     double referencePeak = 0.0;
     {
-        std::unique_ptr<Backend> backend = makeBackend();
+        std::unique_ptr<Renderer> backend = makeBackend();
         RenderSettings still = settings;
         still.denoise = Denoise::Off;
         still.reproject = false;
@@ -101,7 +101,7 @@ nlohmann::json measureOrbit(const std::function<std::unique_ptr<Backend>()>& mak
     restart.reproject = false;
     RenderSettings carry = settings;
     carry.reproject = true;
-    std::unique_ptr<Backend> backend = makeBackend();
+    std::unique_ptr<Renderer> backend = makeBackend();
     Run before = moveAlong(*backend, scene, restart, m, samples);
     Run after = moveAlong(*backend, scene, carry, m, samples);
 

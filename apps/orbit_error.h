@@ -12,7 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/frame/backend.h"
+#include "core/frame/renderer.h"
 #include "core/scene/camera_path.h"
 
 namespace photon {
@@ -27,7 +27,7 @@ struct OrbitMeasurement {
 
 // Renders on backends from `makeBackend`, prints a row per sample frame and the medians, and
 // returns them as JSON. `settings` are the moving run's (denoise and reproject as given).
-nlohmann::json measureOrbit(const std::function<std::unique_ptr<Backend>()>& makeBackend, const Scene& scene,
+nlohmann::json measureOrbit(const std::function<std::unique_ptr<Renderer>()>& makeBackend, const Scene& scene,
                             const RenderSettings& settings, const OrbitMeasurement& m);
 
 }  // namespace photon

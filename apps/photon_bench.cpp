@@ -93,21 +93,21 @@ CaseLists parseLists(const CLI::App& app, BenchOptions& o) {
 }
 
 // The first backend of --backends (cpu when none), for the jobs that run on one.
-std::unique_ptr<Backend> firstBackend(const BenchOptions& o) {
+std::unique_ptr<Renderer> firstBackend(const BenchOptions& o) {
     std::vector<std::string> names = splitList(o.backends);
-    return createBackend(names.empty() ? "cpu" : names[0], o.options);
+    return createRenderer(names.empty() ? "cpu" : names[0], o.options);
 }
 
 void runImageWriters(const BenchOptions& o, const CaseLists& lists) {
     checkOutputPath(o.imageDir + "/photon-bench-image.png", "image");
-    std::unique_ptr<Backend> backend = firstBackend(o);
+    std::unique_ptr<Renderer> backend = firstBackend(o);
     std::vector<std::string> sceneNames = splitList(o.scenes);
     benchImageWriters(*backend, sceneNamed(sceneNames.empty() ? "cornell" : sceneNames[0], o.scenesDir),
                       lists.resolutions, o.writes, o.imageDir);
 }
 
 void runPhotonUse(const BenchOptions& o, const CaseLists& lists) {
-    std::unique_ptr<Backend> backend = firstBackend(o);
+    std::unique_ptr<Renderer> backend = firstBackend(o);
     std::vector<std::pair<Scene, PhotonUseCase>> cases;
     for (const std::string& name : splitList(o.scenes)) {
         Scene scene = sceneNamed(name, o.scenesDir);

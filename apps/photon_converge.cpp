@@ -120,7 +120,7 @@ struct ConvergeOptions {
     std::string timesText;
     std::string imagesDir;
     std::uint32_t maxFrames = 256;
-    BackendOptions options;
+    DeviceOptions options;
     std::vector<std::string> overrides;
     std::string cameraPath;
     OrbitMeasurement orbit;
@@ -130,7 +130,7 @@ void addOptions(CLI::App& app, ConvergeOptions& o) {
     app.add_option("scene", o.scenePath, "Scene file (its render settings, then the options below)")->check(kFileName);
     app.add_option("--reference", o.referencePath, "The converged image (.pfm or .exr); not with --camera-path")->check(kFileName);
     app.add_option("--compare", o.comparePath, "Only compare this image (.pfm or .exr) with the reference")->check(kFileName);
-    app.add_option("--backend", o.backendName, "auto|cpu|cuda|vulkan")->check(CLI::IsMember({"auto", "cpu", "cuda", "vulkan"}));
+    app.add_option("--backend", o.backendName, "auto|cpu|cuda|vulkan, or a list (one device each)")->check(kBackendList);
     app.add_option("--device", o.options.device, "GPU to use: index or part of its name");
     app.add_option("--estimators", o.estimators, "Comma-separated estimators to measure");
     app.add_option("--frames", o.maxFrames, "Frames of each estimator; checkpoints at 1, 2, 4, ... and this")
@@ -168,7 +168,7 @@ void runOrbit(const ConvergeOptions& o) {
     chooseDefaults(s, true);
     chooseInteractive(s);
     chooseSpectral(s, scene);
-    auto make = [&] { return createBackend(o.backendName, o.options); };
+    auto make = [&] { return createRenderer(o.backendName, o.options); };
     choosePhotons(s, make()->runsOnCpu());
     validateSettings(s);
     nlohmann::json out = measureOrbit(make, scene, s, orbit);
@@ -184,7 +184,7 @@ using Measure = std::function<std::pair<ImageError, Quality>(const Image&)>;
 
 // Renders up to --frames frames with `s` on `backend` and measures the image (and the denoised
 // one, with the denoiser on) at every checkpoint; returns the checkpoints' rows.
-nlohmann::json measureCheckpoints(Backend& backend, const RenderSettings& s, const std::string& name,
+nlohmann::json measureCheckpoints(Renderer& backend, const RenderSettings& s, const std::string& name,
                                   const ConvergeOptions& o, const std::vector<double>& times, const Measure& measure) {
     double ms = 0.0;
     std::uint32_t next = 1;
@@ -275,7 +275,7 @@ int run(int argc, char** argv) {
                          std::to_string(reference.height) + ", the render " + std::to_string(base.width) + "x" +
                          std::to_string(base.height));
     }
-    std::unique_ptr<Backend> backend = createBackend(o.backendName, o.options);
+    std::unique_ptr<Renderer> backend = createRenderer(o.backendName, o.options);
     choosePhotons(base, backend->runsOnCpu());
     chooseSpectral(base, scene);
     backend->setScene(scene);

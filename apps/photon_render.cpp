@@ -125,14 +125,17 @@ int run(int argc, char** argv) {
     std::string backendName = "auto";
     std::string output = "render.png";
     std::string statsPath;
-    BackendOptions backendOptions;
+    DeviceOptions backendOptions;
     bool quiet = false;
     double seconds = 0.0;
     RenderOptions options;
     app.add_option("scene", scenePath, "Scene file (JSON) or model (.obj, .gltf, .glb); the built-in Cornell box if omitted")->check(kFileName);
-    app.add_option("--backend", backendName, "auto|cpu|cuda|vulkan (auto: a GPU if there is one, else the CPU)")
-        ->check(CLI::IsMember({"auto", "cpu", "cuda", "vulkan"}));
-    app.add_option("--device", backendOptions.device, "GPU to use: index or part of its name");
+    app.add_option("--backend", backendName,
+                   "auto|cpu|cuda|vulkan (auto: a GPU if there is one, else the CPU); a list renders on several "
+                   "devices, one each (cpu,cpu or cuda,cuda)")
+        ->check(kBackendList);
+    app.add_option("--device", backendOptions.device,
+                   "GPU to use: index or part of its name; one per backend of a list (0,1)");
     addSwitch(app, "--validation", backendOptions.validation, "Vulkan: validation layer on; any message fails");
     app.add_option("--output,-o", output, "Image file: .png (tone-mapped), .exr or .pfm (linear)")->check(kFileName);
     app.add_option("--stats", statsPath, "Write per-stage times and photon counts as JSON")->check(kFileName);
@@ -188,7 +191,7 @@ int run(int argc, char** argv) {
     RenderObserver observer;
     observer.frame = [&](std::uint32_t frames, double elapsed) { progress.update(frames, elapsed); };
     observer.cancel = [] { return interruptSignal() != 0; };
-    observer.finished = [&](Backend& backend) {
+    observer.finished = [&](Renderer& backend) {
         progress.finish();
         if (!statsPath.empty()) {
             stats = renderStatsJson(backend);

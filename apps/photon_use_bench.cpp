@@ -7,7 +7,7 @@
 
 namespace photon {
 
-void benchPhotonUse(Backend& backend, const std::vector<std::pair<Scene, PhotonUseCase>>& cases, std::uint32_t frames) {
+void benchPhotonUse(Renderer& backend, const std::vector<std::pair<Scene, PhotonUseCase>>& cases, std::uint32_t frames) {
     std::printf("%-10s %-8s %-11s %9s %-8s %10s %10s %8s %9s\n", "scene", "backend", "resolution", "photons", "map",
                 "stored", "gathered", "share", "pixels");
     for (const auto& [scene, c] : cases) {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "core/frame/backend.h"
+#include "core/frame/renderer.h"
 
 namespace photon {
 
@@ -18,6 +18,6 @@ struct PhotonUseCase {
 // Renders each case `frames` frames on `backend` and prints, per map, the last frame's stored
 // photons, the share of them within some pixel's disc (core/frame/photon_use.h) and the pixels
 // that gather from it.
-void benchPhotonUse(Backend& backend, const std::vector<std::pair<Scene, PhotonUseCase>>& cases, std::uint32_t frames);
+void benchPhotonUse(Renderer& backend, const std::vector<std::pair<Scene, PhotonUseCase>>& cases, std::uint32_t frames);
 
 }  // namespace photon

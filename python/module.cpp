@@ -141,12 +141,12 @@ py::array_t<float> renderScene(const py::object& sceneArg, const py::kwargs& kwa
 }
 
 // Progressive rendering: a backend that keeps its frames between calls.
-class Renderer {
+class ProgressiveRenderer {
 public:
-    Renderer(const py::object& sceneArg, const py::kwargs& kwargs) {
+    ProgressiveRenderer(const py::object& sceneArg, const py::kwargs& kwargs) {
         Scene scene = loadScene(sceneArg);
         Options o = readOptions(scene, kwargs);
-        backend_ = createBackend(o.job.backend, o.job.device);
+        backend_ = createRenderer(o.job.backend, o.job.device);
         choosePhotons(o.settings, backend_->runsOnCpu());
         backend_->setScene(std::move(scene));
         backend_->setSettings(o.settings);
@@ -207,7 +207,7 @@ public:
     }
 
 private:
-    std::unique_ptr<Backend> backend_;
+    std::unique_ptr<Renderer> backend_;
     std::uint32_t frames_ = 0;
 };
 
@@ -245,11 +245,11 @@ PYBIND11_MODULE(photon, m) {
         },
         py::arg("path"), py::arg("image"), py::arg("exposure") = 0.0f,
         "Writes an image as photon-render does, by extension: .png (tone-mapped sRGB), .exr or .pfm (linear).");
-    py::class_<Renderer>(m, "Renderer", "Progressive rendering: frames accumulate across step() calls.")
+    py::class_<ProgressiveRenderer>(m, "Renderer", "Progressive rendering: frames accumulate across step() calls.")
         .def(py::init<const py::object&, const py::kwargs&>(), py::arg("scene"))
-        .def("step", &Renderer::step, py::arg("frames") = 1, py::arg("progress") = nullptr,
+        .def("step", &ProgressiveRenderer::step, py::arg("frames") = 1, py::arg("progress") = nullptr,
              "Renders frames; returns the frames accumulated so far.")
-        .def("image", &Renderer::image, "The accumulated image (denoised where the settings say).")
-        .def("aovs", &Renderer::aovs, "Albedo, normal, depth and variance images (with aov=True).")
-        .def("stats", &Renderer::stats, "photon-render's --stats as a dict: photons and grids of the last frame, costs.");
+        .def("image", &ProgressiveRenderer::image, "The accumulated image (denoised where the settings say).")
+        .def("aovs", &ProgressiveRenderer::aovs, "Albedo, normal, depth and variance images (with aov=True).")
+        .def("stats", &ProgressiveRenderer::stats, "photon-render's --stats as a dict: photons and grids of the last frame, costs.");
 }

@@ -2,7 +2,7 @@
 // the C and GLSL preprocessors both expand (as PH_BUFFERS in bindings.h): into the STAGE_*
 // constants, into the hosts' table of names (kStages) that every report loops over, and into each
 // backend's table of stage functions, which carry the stage's name in every backend (cpu/,
-// cuda/stages.cu, vulkan/record_frame.cpp). core/frame/backend.cpp runs them in this order.
+// cuda/stages.cu, vulkan/record_frame.cpp). core/frame/renderer.cpp runs them in this order.
 //
 // A row is X(NAME, id, name, label):
 //   NAME   the stage constant is STAGE_<NAME>

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "core/frame/backend.h"
+#include "core/frame/renderer.h"
 #include "core/image/image.h"
 #include "core/system/error.h"
 #include "test_render.h"
@@ -28,7 +28,7 @@ struct StageOutputs {
     FrameStats stats;
 };
 
-inline StageOutputs renderStages(Backend& backend, const Scene& scene, const RenderSettings& settings) {
+inline StageOutputs renderStages(Renderer& backend, const Scene& scene, const RenderSettings& settings) {
     renderFrames(backend, scene, settings, settings.frames);
     StageOutputs out;
     out.maps = backend.readPhotonMaps();
@@ -71,7 +71,7 @@ inline RenderSettings roomFor64PhotonsPerPath(RenderSettings base) {
 
 // prepare() refuses the backend's scene and settings with an InputError, before any work;
 // `accepted` is the failure if it does not. `naming`: a word the message must hold (or none).
-inline void expectRefused(Backend& backend, const std::string& accepted, const char* naming = nullptr) {
+inline void expectRefused(Renderer& backend, const std::string& accepted, const char* naming = nullptr) {
     try {
         backend.prepare();
         ADD_FAILURE() << accepted;

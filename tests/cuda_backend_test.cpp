@@ -12,7 +12,7 @@
 #include "backend_compare.h"
 #include "core/loaders/scene_loader.h"
 #include "core/scene/camera_path.h"
-#include "cuda/cuda_backend.h"
+#include "cuda/cuda_device.h"
 
 namespace photon {
 namespace {
@@ -35,10 +35,10 @@ protected:
     }
 
     void compare(const Scene& scene, const RenderSettings& settings, const std::string& name, bool parity) {
-        auto cpu = createBackend("cpu");
-        BackendOptions options;
+        auto cpu = createRenderer("cpu");
+        DeviceOptions options;
         options.parity = parity;
-        auto cuda = createBackend("cuda", options);
+        auto cuda = createRenderer("cuda", options);
         test::StageOutputs expected = test::renderStages(*cpu, scene, settings);
         test::StageOutputs actual = test::renderStages(*cuda, scene, settings);
         if (parity) {
@@ -70,11 +70,11 @@ TEST_F(CudaVsCpu, AovsAndTheDenoiserInTheParityBuild) {
     RenderSettings s = small();
     s.estimator = Estimator::Sppm;
     s.denoise = Denoise::On;
-    auto cpu = createBackend("cpu");
-    BackendOptions options;
+    auto cpu = createRenderer("cpu");
+    DeviceOptions options;
     options.parity = true;
-    auto cuda = createBackend("cuda", options);
-    for (Backend* b : {cpu.get(), cuda.get()}) {
+    auto cuda = createRenderer("cuda", options);
+    for (Renderer* b : {cpu.get(), cuda.get()}) {
         b->setScene(scene);
         b->setSettings(s);
         for (int f = 0; f < 5; ++f) {
@@ -98,12 +98,12 @@ TEST_F(CudaVsCpu, ReprojectionInTheParityBuild) {
     s.estimator = Estimator::Sppm;
     s.denoise = Denoise::On;
     s.reproject = true;
-    auto cpu = createBackend("cpu");
-    BackendOptions options;
+    auto cpu = createRenderer("cpu");
+    DeviceOptions options;
     options.parity = true;
-    auto cuda = createBackend("cuda", options);
+    auto cuda = createRenderer("cuda", options);
     const CameraPath orbit{6.0};
-    for (Backend* b : {cpu.get(), cuda.get()}) {
+    for (Renderer* b : {cpu.get(), cuda.get()}) {
         b->setScene(scene);
         b->setSettings(s);
         for (int f = 0; f < 4; ++f) {
@@ -163,8 +163,8 @@ TEST_F(CudaVsCpu, DeterministicMapsEqualTheCpuInOrder) {
     RenderSettings s = small();
     s.gatherBudget = 32;
     s.deterministic = true;
-    auto cpu = createBackend("cpu");
-    auto cuda = createBackend("cuda", BackendOptions{"", false, true});
+    auto cpu = createRenderer("cpu");
+    auto cuda = createRenderer("cuda", DeviceOptions{"", false, true});
     test::StageOutputs expected = test::renderStages(*cpu, scene, s);
     test::StageOutputs actual = test::renderStages(*cuda, scene, s);
     test::expectIdenticalPhotonMaps(actual.maps, expected.maps);
@@ -179,8 +179,8 @@ TEST_F(CudaVsCpu, SameSeedSameImageWhenDeterministic) {
     s.gatherBudget = 32;
     s.deterministic = true;
     s.frames = 3;
-    Image first = test::renderStages(*createBackend("cuda"), scene, s).image;
-    Image second = test::renderStages(*createBackend("cuda"), scene, s).image;
+    Image first = test::renderStages(*createRenderer("cuda"), scene, s).image;
+    Image second = test::renderStages(*createRenderer("cuda"), scene, s).image;
     EXPECT_EQ(test::differingPixels(first, second), 0u);
 }
 
@@ -188,7 +188,7 @@ TEST_F(CudaVsCpu, SameSeedSameImageWhenDeterministic) {
 // GPU) is refused before any work; the backend renders a small one afterwards.
 TEST_F(CudaVsCpu, TooLargeRequestsAreRefusedBeforeWork) {
     Scene scene = defaultScene();
-    auto cuda = createBackend("cuda");
+    auto cuda = createRenderer("cuda");
     MemoryLimits limits = cuda->memoryLimits();
     RenderSettings s = test::roomFor64PhotonsPerPath(scene.render);
     // Photon buffers alone: the photon pass's records, the maps and a key per stored photon.
@@ -228,7 +228,7 @@ TEST_F(CudaVsCpu, EveryShippedSceneRendersWithoutNaN) {
         }
         SCOPED_TRACE(entry.path().string());
         Scene scene = loadSceneFile(entry.path().string());
-        auto cuda = createBackend("cuda");
+        auto cuda = createRenderer("cuda");
         test::renderFrames(*cuda, scene, test::sizedSettings(scene.render, 64, 48, 20000), 1);
         EXPECT_TRUE(allFinite(cuda->image()));
     }
@@ -248,12 +248,34 @@ TEST_F(CudaVsCpu, MeshScenesInTheParityBuild) {
 TEST_F(CudaVsCpu, OverflowingPhotonMapGrowsAndTheFirstFrameIsRedone) {
     Scene scene = test::overflowingScene();
     RenderSettings s = test::overflowingSettings(test::sizedSettings({}, 32, 32, 20000));
-    auto cuda = createBackend("cuda", BackendOptions{"", false, true});
-    auto cpu = createBackend("cpu");
+    auto cuda = createRenderer("cuda", DeviceOptions{"", false, true});
+    auto cpu = createRenderer("cpu");
     test::StageOutputs actual = test::renderStages(*cuda, scene, s);
     test::StageOutputs expected = test::renderStages(*cpu, scene, s);
     EXPECT_LE(actual.stats.stored[MAP_GLOBAL], actual.stats.capacity[MAP_GLOBAL]);
     test::expectSamePhotonMaps(actual.maps, expected.maps);
+}
+
+// Two CUDA devices (here both on GPU 0 where there is one: two streams and buffer sets) split a
+// frame's photon paths and meet in the first one's maps: one device's image and maps, bit for bit,
+// also when the maps overflow and grow.
+TEST_F(CudaVsCpu, SeveralDevicesRenderOneDevicesImage) {
+    DeviceOptions options;
+    options.parity = true;
+    options.device = "0";
+    RenderSettings s = small();
+    s.deterministic = true;
+    auto one = createRenderer("cuda", options);
+    auto two = createRenderer("cuda,cuda", options);
+    for (bool overflowing : {false, true}) {
+        Scene scene = overflowing ? test::overflowingScene() : defaultScene();
+        RenderSettings settings = overflowing ? test::overflowingSettings(s) : s;
+        test::StageOutputs expected = test::renderStages(*one, scene, settings);
+        test::StageOutputs actual = test::renderStages(*two, scene, settings);
+        EXPECT_GT(two->lastFrameStats().exchange.bytes, 0u);
+        EXPECT_EQ(test::differingPixels(actual.image, expected.image), 0u) << (overflowing ? "overflowing" : "cornell");
+        test::expectIdenticalPhotonMaps(actual.maps, expected.maps);
+    }
 }
 
 }  // namespace

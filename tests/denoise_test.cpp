@@ -30,7 +30,7 @@ struct Renders {
 // `frames` frames of the scene on the CPU with the denoiser on: the image without and with it.
 Renders render(const Scene& scene, RenderSettings settings, std::uint32_t frames) {
     settings.denoise = Denoise::On;
-    auto backend = createBackend("cpu");
+    auto backend = createRenderer("cpu");
     test::renderFrames(*backend, scene, settings, frames);
     Renders r;
     r.denoised = backend->image();
@@ -138,7 +138,7 @@ TEST(Aov, AreTheSurfaceTheCameraSees) {
     s.finalize();
     RenderSettings settings = test::sizedSettings({}, 16, 12, 2000);
     settings.aov = true;
-    auto backend = createBackend("cpu");
+    auto backend = createRenderer("cpu");
     test::renderFrames(*backend, s, settings, 3);
     std::vector<PixelAov> aovs = backend->readAovs();
     ASSERT_EQ(aovs.size(), 16u * 12u);

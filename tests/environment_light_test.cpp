@@ -29,13 +29,13 @@ constexpr double kPi = 3.14159265358979323846;
 
 // Every backend that runs here: the CPU, and Vulkan (with its validation layer) and CUDA where a
 // device exists.
-std::vector<std::unique_ptr<Backend>> backendsHere() {
-    std::vector<std::unique_ptr<Backend>> backends;
+std::vector<std::unique_ptr<Renderer>> backendsHere() {
+    std::vector<std::unique_ptr<Renderer>> backends;
     for (const std::string& name : compiledBackends()) {
-        BackendOptions options;
+        DeviceOptions options;
         options.validation = name == "vulkan";
         try {
-            backends.push_back(createBackend(name, options));
+            backends.push_back(createRenderer(name, options));
         } catch (const RuntimeError& e) {
             std::printf("%s: not here (%s)\n", name.c_str(), e.what());
         }

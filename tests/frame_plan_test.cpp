@@ -11,13 +11,13 @@
 #include <vector>
 
 #include "core/frame/scene_settings.h"
-#include "core/frame/backend.h"
+#include "core/frame/renderer.h"
 #include "core/frame/buffers.h"
 #include "core/frame/median.h"
 #include "core/frame/photon_use.h"
 #include "core/loaders/scene_loader.h"
 #include "core/settings/setting_specs.h"
-#include "cpu/cpu_backend.h"
+#include "core/render/devices.h"
 
 namespace photon {
 namespace {
@@ -31,7 +31,7 @@ TEST(StageList, NamesAreTheReportKeys) {
 }
 
 TEST(StageList, EveryStageIsTimed) {
-    std::unique_ptr<Backend> cpu = createCpuBackend();
+    std::unique_ptr<Renderer> cpu = createRenderer("cpu");
     cpu->setScene(defaultScene());
     RenderSettings s;
     s.width = 32;
@@ -176,7 +176,7 @@ TEST(PhotonUse, FollowsWhatTheCameraSees) {
         s.height = 48;
         s.photons = 40000;
         s.estimator = Estimator::Sppm;
-        std::unique_ptr<Backend> backend = createCpuBackend();
+        std::unique_ptr<Renderer> backend = createRenderer("cpu");
         backend->setScene(scene);
         backend->setSettings(s);
         for (int f = 0; f < 2; ++f) {

@@ -96,7 +96,7 @@ inline CausticPeak findCausticPeak(const Scene& lens, float probe, const RenderS
         RenderSettings settings = sizedSettings(base, 4, 4, 200000);
         settings.causticFraction = 0.99f;
         settings.causticRadius = probe;
-        auto backend = createBackend("cpu");
+        auto backend = createRenderer("cpu");
         backend->setScene(std::move(s));
         backend->setSettings(settings);
         backend->renderFrame();

@@ -31,7 +31,7 @@ TEST(PathSplit, RanksTogetherTraceThePhotonsOfOne) {
         s.height = 24;
         s.photons = 30001;  // not a multiple of the ranks
         s.frames = 1;
-        auto backend = createBackend("cpu");
+        auto backend = createRenderer("cpu");
         backend->setScene(scene);
         backend->setSettings(s);
         backend->renderFrame();
@@ -41,7 +41,7 @@ TEST(PathSplit, RanksTogetherTraceThePhotonsOfOne) {
             std::uint64_t paths = 0;
             for (std::uint32_t rank = 0; rank < ranks; ++rank) {
                 // One renderer per rank, as one per GPU: each at frame 0, whose random numbers they share.
-                auto share = createBackend("cpu");
+                auto share = createRenderer("cpu");
                 share->setScene(scene);
                 share->setSettings(s);
                 share->setPathSplit({rank, ranks});
@@ -70,7 +70,7 @@ TEST(PathSplit, RanksTogetherTraceThePhotonsOfOne) {
 }
 
 TEST(PathSplit, BadRanksAreRefused) {
-    auto backend = createBackend("cpu");
+    auto backend = createRenderer("cpu");
     EXPECT_THROW(backend->setPathSplit({2, 2}), std::invalid_argument);
     EXPECT_THROW(backend->setPathSplit({0, 0}), std::invalid_argument);
 }

@@ -276,7 +276,7 @@ TEST(Volume, PhotonsThroughAnAbsorbingSlabLoseExpMinusSigmaD) {
         settings.width = 4;
         settings.height = 4;
         settings.photons = 50000;
-        auto backend = createBackend("cpu");
+        auto backend = createRenderer("cpu");
         backend->setScene(std::move(s));
         backend->setSettings(settings);
         backend->renderFrame();

@@ -15,7 +15,7 @@ glm::dvec2 mapFlux(const Scene& scene, float causticFraction, std::uint32_t seed
     RenderSettings settings = test::sizedSettings({}, 4, 4, 400000);
     settings.causticFraction = causticFraction;
     settings.seed = seed;
-    auto backend = createBackend("cpu");
+    auto backend = createRenderer("cpu");
     backend->setScene(scene);
     backend->setSettings(settings);
     glm::dvec2 flux(0.0);

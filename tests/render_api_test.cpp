@@ -47,7 +47,7 @@ TEST(RenderApi, ObserverSeesEveryFrameAndCancelsWithTheImageSoFar) {
         EXPECT_GE(seconds, 0.0);
     };
     observer.cancel = [&] { return seen.size() == 2; };
-    observer.finished = [&](Backend& backend) { finished = backend.lastFrameStats().stored[MAP_GLOBAL] > 0; };
+    observer.finished = [&](Renderer& backend) { finished = backend.lastFrameStats().stored[MAP_GLOBAL] > 0; };
     RenderResult result = render(defaultScene(), small(10), onCpu(), observer);
     EXPECT_TRUE(result.cancelled);
     EXPECT_EQ(seen, (std::vector<std::uint32_t>{1, 2}));

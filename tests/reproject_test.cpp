@@ -37,9 +37,9 @@ RenderSettings movingSettings() {
 }
 
 // `frames` frames still, then `moves` frames each a step further along the orbit.
-std::unique_ptr<Backend> renderMoving(const Scene& scene, const RenderSettings& settings, std::uint32_t frames,
+std::unique_ptr<Renderer> renderMoving(const Scene& scene, const RenderSettings& settings, std::uint32_t frames,
                                       std::uint32_t moves) {
-    auto backend = createBackend("cpu");
+    auto backend = createRenderer("cpu");
     test::renderFrames(*backend, scene, settings, frames);
     for (std::uint32_t f = 1; f <= moves; ++f) {
         backend->moveCamera(cameraAt(kOrbit, scene.camera, f * kFrameSeconds));
@@ -48,7 +48,7 @@ std::unique_ptr<Backend> renderMoving(const Scene& scene, const RenderSettings& 
     return backend;
 }
 
-std::vector<float> historyLengths(Backend& backend) {
+std::vector<float> historyLengths(Renderer& backend) {
     std::vector<float> frames;
     for (const PixelAov& a : backend.readAovs()) {
         frames.push_back(a.frames);
@@ -81,7 +81,7 @@ TEST(Reproject, APixelKeepsItsHistoryWhereItsSurfaceStaysInView) {
     // view at the image's side.
     scene.camera.fovY = 20.0f;
     const CameraDesc moved = cameraAt(CameraPath{120.0}, scene.camera, 1.0);
-    auto backend = createBackend("cpu");
+    auto backend = createRenderer("cpu");
     test::renderFrames(*backend, scene, s, 8);
     backend->moveCamera(moved);
     backend->renderFrame();
@@ -128,7 +128,7 @@ TEST(Reproject, TheCarriedImageIsCloserToTheReferenceThanARestart) {
     still.reproject = false;
     still.photons = 100000;
     still.seed = 11;
-    auto reference = createBackend("cpu");
+    auto reference = createRenderer("cpu");
     reference->setScene(scene);
     reference->setSettings(still);
     reference->setCamera(last);

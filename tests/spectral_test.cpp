@@ -252,7 +252,7 @@ TEST(SpectralRender, PrismBendsEachWavelengthAsSnellsLaw) {
         RenderSettings settings = test::sizedSettings(scene.render, 4, 4, 200000);
         settings.wavelength = lambda;
         settings.causticFraction = 0.99f;
-        auto backend = createBackend("cpu");
+        auto backend = createRenderer("cpu");
         backend->setScene(std::move(scene));
         backend->setSettings(settings);
         backend->renderFrame();

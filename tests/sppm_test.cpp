@@ -32,7 +32,7 @@ RenderSettings referenceSettings(const Scene& scene, Estimator estimator, std::u
 
 // The backend's image after each of `checkpoints` frame counts.
 std::vector<Image> renderCheckpoints(const Scene& scene, const RenderSettings& settings, std::vector<std::uint32_t> checkpoints) {
-    auto backend = createBackend("cpu");
+    auto backend = createRenderer("cpu");
     backend->setScene(scene);
     backend->setSettings(settings);
     std::vector<Image> images;
@@ -128,7 +128,7 @@ TEST(Sppm, SameSeedRepeatsAndACameraChangeRestarts) {
     Image second = renderCheckpoints(scene, s, {3}).back();
     EXPECT_EQ(test::differingPixels(first, second), 0u);
     // Three frames, a camera "change" that restarts, three frames: the statistics start again.
-    auto backend = createBackend("cpu");
+    auto backend = createRenderer("cpu");
     test::renderFrames(*backend, scene, s, 3);
     backend->setCamera(scene.camera);
     for (int f = 0; f < 3; ++f) {
@@ -167,7 +167,7 @@ TEST(SppmCells, FollowTheLargestRadius) {
         RenderSettings s = test::sizedSettings(scene.render, 64, 48, 20000);
         s.estimator = Estimator::Sppm;
         s.radius = radius;
-        auto backend = createBackend("cpu");
+        auto backend = createRenderer("cpu");
         test::renderFrames(*backend, scene, s, 1);
         // The second frame's grids, as it would run (not run: the old cells made it hang).
         const FrameParams& next = backend->beginFrame();

@@ -19,7 +19,7 @@ inline RenderSettings sizedSettings(RenderSettings base, std::uint32_t width, st
 
 // `frames` frames of the scene on `backend`, counted from its first: setting the scene and the
 // settings restarts the frames and the accumulation.
-inline void renderFrames(Backend& backend, const Scene& scene, const RenderSettings& settings, std::uint32_t frames) {
+inline void renderFrames(Renderer& backend, const Scene& scene, const RenderSettings& settings, std::uint32_t frames) {
     backend.setScene(scene);
     backend.setSettings(settings);
     for (std::uint32_t f = 0; f < frames; ++f) {
@@ -29,7 +29,7 @@ inline void renderFrames(Backend& backend, const Scene& scene, const RenderSetti
 
 // The CPU reference's accumulated image after `frames` frames of the scene.
 inline Image renderOnCpu(const Scene& scene, const RenderSettings& settings, std::uint32_t frames = 1) {
-    auto backend = createBackend("cpu");
+    auto backend = createRenderer("cpu");
     renderFrames(*backend, scene, settings, frames);
     return backend->image();
 }

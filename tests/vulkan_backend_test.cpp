@@ -29,7 +29,7 @@
 #include "shared/photon_map.h"
 #include "test_util.h"
 #include "vulkan/context.h"
-#include "vulkan/vulkan_backend.h"
+#include "vulkan/vulkan_device.h"
 
 namespace photon {
 namespace {
@@ -95,18 +95,18 @@ protected:
         if (vulkanDeviceCount() == 0) {
             return;
         }
-        BackendOptions options;
+        DeviceOptions options;
         options.validation = true;
         options.device = "llvmpipe";
         try {
-            vulkan_ = createVulkanBackend(options).release();
+            vulkan_ = createRenderer("vulkan", options).release();
             lavapipe_ = true;
         } catch (const RuntimeError&) {
             options.device = "";
-            vulkan_ = createVulkanBackend(options).release();
+            vulkan_ = createRenderer("vulkan", options).release();
         }
-        cpu_ = createBackend("cpu").release();
-        otherSeed_ = createBackend("cpu").release();
+        cpu_ = createRenderer("cpu").release();
+        otherSeed_ = createRenderer("cpu").release();
         std::printf("Vulkan device: %s\n", vulkan_->deviceName().c_str());
     }
 
@@ -176,16 +176,16 @@ protected:
         EXPECT_LE(compareImages(cpu_->readFrame(), vulkan_->readFrame(), file), imageTolerance());
     }
 
-    static Backend* vulkan_;
-    static Backend* cpu_;
-    static Backend* otherSeed_;  // the CPU with another seed: the noise to allow off lavapipe
+    static Renderer* vulkan_;
+    static Renderer* cpu_;
+    static Renderer* otherSeed_;  // the CPU with another seed: the noise to allow off lavapipe
     static double noise_;
     static bool lavapipe_;  // the device is lavapipe: photon maps and hit points bit-exact
 };
 
-Backend* VulkanBackendTest::vulkan_ = nullptr;
-Backend* VulkanBackendTest::cpu_ = nullptr;
-Backend* VulkanBackendTest::otherSeed_ = nullptr;
+Renderer* VulkanBackendTest::vulkan_ = nullptr;
+Renderer* VulkanBackendTest::cpu_ = nullptr;
+Renderer* VulkanBackendTest::otherSeed_ = nullptr;
 double VulkanBackendTest::noise_ = 0.0;
 bool VulkanBackendTest::lavapipe_ = false;
 
@@ -265,7 +265,7 @@ TEST_F(VulkanBackendTest, ReprojectionAgreesWithCpu) {
     Scene scene = featureScene();
     render(scene, settings, 4);
     const CameraPath orbit{6.0};
-    for (Backend* b : {cpu_, vulkan_}) {
+    for (Renderer* b : {cpu_, vulkan_}) {
         for (int f = 1; f <= 3; ++f) {
             b->moveCamera(cameraAt(orbit, scene.camera, f / 60.0));
             b->renderFrame();
@@ -475,6 +475,30 @@ TEST_F(VulkanBackendTest, DeterministicMapsEqualTheCpuInOrder) {
         render(scene, settings, 2);
         EXPECT_EQ(test::differingPixels(first, vulkan_->image()), 0u) << scene.name << ": the same seed twice";
     }
+    }
+}
+
+// Two Vulkan devices split a frame's photon paths and the second sends its photons to the first
+// (core/frame/collective.h): the image is one device's bit for bit. On one GPU (or lavapipe) the
+// two devices are two contexts on it; the exchange goes through writeBuffer's upload at an offset.
+TEST_F(VulkanBackendTest, TwoDevicesRenderOneDevicesImage) {
+    DeviceOptions options;
+    options.validation = true;
+    options.device = lavapipe_ ? "llvmpipe" : "";
+    auto two = createRenderer("vulkan,vulkan", options);
+    for (const Scene& scene : {defaultScene(), featureScene()}) {
+        RenderSettings settings = smallSettings();
+        settings.deterministic = true;
+        render(scene, settings, 2);
+        two->setScene(scene);
+        two->setSettings(settings);
+        two->renderFrame();
+        two->renderFrame();
+        EXPECT_GT(two->lastFrameStats().exchange.bytes, 0u);
+        EXPECT_EQ(test::differingPixels(vulkan_->image(), two->image()), 0u) << scene.name;
+        for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
+            EXPECT_EQ(vulkan_->lastFrameStats().stored[m], two->lastFrameStats().stored[m]) << kMapNames[m];
+        }
     }
 }
 

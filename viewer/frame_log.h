@@ -9,7 +9,7 @@
 
 #include <vulkan/vulkan.h>
 
-#include "core/frame/backend.h"
+#include "core/frame/renderer.h"
 #include "vulkan/context.h"
 
 namespace photon::viewer {

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "core/frame/backend.h"
+#include "core/frame/renderer.h"
 #include "frame_log.h"
 #include "light_editor.h"
 #include "state.h"

@@ -11,7 +11,7 @@ namespace spirv {
 #include "viewer_dots.spv.h"
 }  // namespace spirv
 
-PhotonDots::PhotonDots(const vk::Context& context, const vk::VulkanBackend& backend)
+PhotonDots::PhotonDots(const vk::Context& context, const vk::VulkanDevice& backend)
     : context_(context), pass_(context.device) {
     VkDevice device = context.device;
     VkDescriptorSetLayoutBinding binding{DOTS_BINDING_DOTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
@@ -39,7 +39,7 @@ void PhotonDots::resize(std::uint32_t width, std::uint32_t height) {
                               bytes);
 }
 
-void PhotonDots::record(VkCommandBuffer cmd, const vk::VulkanBackend& backend, float brightness, float depthTolerance) {
+void PhotonDots::record(VkCommandBuffer cmd, const vk::VulkanDevice& backend, float brightness, float depthTolerance) {
     // The display pass of the previous frame has read the dots before they are cleared.
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT,
                       VK_ACCESS_TRANSFER_WRITE_BIT);

@@ -10,7 +10,7 @@
 #include <vulkan/vulkan.h>
 
 #include "pass_pipeline.h"
-#include "vulkan/backend.h"
+#include "vulkan/device.h"
 #include "vulkan/memory.h"
 #include "vulkan/non_copyable.h"
 
@@ -18,7 +18,7 @@ namespace photon::viewer {
 
 class PhotonDots : vk::NonCopyable {
 public:
-    PhotonDots(const vk::Context& context, const vk::VulkanBackend& backend);
+    PhotonDots(const vk::Context& context, const vk::VulkanDevice& backend);
     ~PhotonDots();
 
     // Sizes the dot buffer for a width × height image (three uint per pixel). Only while no
@@ -29,7 +29,7 @@ public:
     // Clears the dots and draws this frame's photons. After the backend's recordFrame() in the
     // same command buffer; `brightness` is per watt of photon power; `depthTolerance` 0 shows
     // hidden photons too. Leaves the dots written for the fragment shader to read.
-    void record(VkCommandBuffer cmd, const vk::VulkanBackend& backend, float brightness, float depthTolerance);
+    void record(VkCommandBuffer cmd, const vk::VulkanDevice& backend, float brightness, float depthTolerance);
 
 private:
     const vk::Context& context_;

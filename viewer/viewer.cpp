@@ -50,9 +50,15 @@ Viewer::Viewer(const ViewerOptions& options)
         contextOptions.createSurface = [this](VkInstance instance) { return window_->createSurface(instance); };
     }
     context_ = std::make_shared<vk::Context>(contextOptions);
-    backend_ = std::make_unique<vk::VulkanBackend>(context_);
-    backend_->setDenoiseEachFrame(true);  // every frame is shown
-    choosePhotons(state_.settings, backend_->runsOnCpu());
+    {
+        auto gpu = std::make_unique<vk::VulkanDevice>(context_);
+        gpu_ = gpu.get();
+        std::vector<std::unique_ptr<Device>> devices;
+        devices.push_back(std::move(gpu));
+        renderer_ = std::make_unique<Renderer>(std::move(devices));
+    }
+    renderer_->setDenoiseEachFrame(true);  // every frame is shown
+    choosePhotons(state_.settings, renderer_->runsOnCpu());
 
     // The display pass leaves a swapchain image ready to present, an offscreen one ready to copy.
     if (window_) {
@@ -64,7 +70,7 @@ Viewer::Viewer(const ViewerOptions& options)
         offscreen_ = std::make_unique<OffscreenTarget>(
             *context_, VkExtent2D{options.settings.width, options.settings.height}, display_->renderPass());
     }
-    dots_ = std::make_unique<PhotonDots>(*context_, *backend_);
+    dots_ = std::make_unique<PhotonDots>(*context_, *gpu_);
     imgui_ = std::make_unique<ImGuiLayer>(*context_, display_->renderPass(), swapchain_ ? swapchain_->imageCount() : 2,
                                           window_ ? window_->handle() : nullptr);
     passTimer_ = std::make_unique<PassTimer>(*context_);
@@ -73,11 +79,11 @@ Viewer::Viewer(const ViewerOptions& options)
 
     // The first frame's scene, settings and camera; an impossible request fails here, at start.
     try {
-        backend_->setScene(lights_.scene());
+        renderer_->setScene(lights_.scene());
         state_.settingsChanged = true;
         applySettings();
-        backend_->setCamera(camera_.camera());
-        backend_->prepare();
+        renderer_->setCamera(camera_.camera());
+        renderer_->prepare();
         context_->checkValidation("starting the viewer");
         started_ = true;
     } catch (...) {
@@ -89,8 +95,8 @@ Viewer::Viewer(const ViewerOptions& options)
 
 void Viewer::setTitle() {
     if (window_) {
-        std::string scene = scenePath_.empty() ? backend_->scene().name : scenePath_;
-        window_->setTitle("photon-view: " + scene + " on " + backend_->deviceName());
+        std::string scene = scenePath_.empty() ? renderer_->scene().name : scenePath_;
+        window_->setTitle("photon-view: " + scene + " on " + renderer_->deviceName());
     }
 }
 
@@ -146,8 +152,8 @@ void Viewer::run() {
 
 HudInfo Viewer::hudInfo() const {
     HudInfo info;
-    info.device = backend_->deviceName();
-    info.scene = scenePath_.empty() ? backend_->scene().name : scenePath_;
+    info.device = renderer_->deviceName();
+    info.scene = scenePath_.empty() ? renderer_->scene().name : scenePath_;
     info.windowWidth = targetExtent().width;
     info.windowHeight = targetExtent().height;
     VkPresentModeKHR mode = swapchain_ ? swapchain_->presentMode() : VK_PRESENT_MODE_FIFO_KHR;
@@ -157,10 +163,10 @@ HudInfo Viewer::hudInfo() const {
                                                              : "no vsync (immediate)";
     info.fps = log_.fps();
     info.frame = log_.empty() ? FrameRecord{} : log_.last();
-    info.stats = backend_->lastFrameStats();
-    info.accumulated = backend_->accumulatedFrames();
+    info.stats = renderer_->lastFrameStats();
+    info.accumulated = renderer_->accumulatedFrames();
     for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
-        info.radius[m] = backend_->lastFrameParams().grids[m].radius;
+        info.radius[m] = renderer_->lastFrameParams().grids[m].radius;
     }
     info.windowed = window_ != nullptr;
     return info;
@@ -205,9 +211,9 @@ void Viewer::printSummary() const {
     // The first frames build pipelines (LLVM on lavapipe) and grow the photon maps.
     std::size_t skip = log_.size() > 2 ? std::max<std::size_t>(1, log_.size() / 10) : 0;
     FrameRecord m = log_.median(skip);
-    const RenderSettings& s = backend_->settings();
+    const RenderSettings& s = renderer_->settings();
     std::fprintf(stderr, "photon-view: %s, %ux%u %s, %zu frames (median of the last %zu): loop %.2f ms (%.1f fps); GPU ms: ",
-                 backend_->deviceName().c_str(), s.width, s.height, swapchain_ ? "windowed" : "offscreen", log_.size(),
+                 renderer_->deviceName().c_str(), s.width, s.height, swapchain_ ? "windowed" : "offscreen", log_.size(),
                  log_.size() - skip, m.loopMs, m.loopMs > 0.0 ? 1000.0 / m.loopMs : 0.0);
     for (const StageInfo& stage : kStages) {
         std::fprintf(stderr, "%s %.2f, ", stage.name, m.stages[stage.id]);
@@ -218,7 +224,7 @@ void Viewer::printSummary() const {
         return;
     }
     nlohmann::json j;
-    j["device"] = backend_->deviceName();
+    j["device"] = renderer_->deviceName();
     j["mode"] = swapchain_ ? "windowed" : "offscreen";
     j["present_mode"] = !swapchain_ ? "none" : swapchain_->presentMode() == VK_PRESENT_MODE_FIFO_KHR ? "fifo" : "no vsync";
     j["width"] = s.width;

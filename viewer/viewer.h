@@ -1,11 +1,12 @@
 // photon-view: the Vulkan backend driven frame by frame, shown in a window (or drawn offscreen),
 // with a free camera, the HUD and screenshots.
 //
-// One frame is one command buffer and one submission: the backend's five stages
-// (VulkanBackend::recordFrame), the photon dots if shown, then one render pass that tone-maps the
+// One frame is one command buffer and one submission: the Renderer's stages on its one Vulkan
+// device, recorded into the viewer's command buffer (Renderer::recordFrame, through
+// VulkanDevice::recordInto: the same stage loop as every other program), the photon dots if shown, then one render pass that tone-maps the
 // accumulation into the target image and draws the HUD over it. One frame is in flight: while the
 // GPU runs frame N, the CPU polls input and builds the HUD for N + 1, then waits for N, hands its
-// stats to the backend (Backend::endFrame) and only then applies what changed, so that a reset
+// stats to the renderer (Renderer::endFrame) and only then applies what changed, so that a reset
 // never meets a frame that is still running.
 //
 //   viewer.cpp        setup, the loop, exit summary
@@ -32,7 +33,7 @@
 #include "screenshot.h"
 #include "state.h"
 #include "swapchain.h"
-#include "vulkan/backend.h"
+#include "vulkan/device.h"
 #include "window.h"
 
 namespace photon::viewer {
@@ -81,7 +82,8 @@ private:
     // Declared in the order they are built; destroyed in reverse, the window last.
     std::unique_ptr<Window> window_;                 // none offscreen
     std::shared_ptr<vk::Context> context_;
-    std::unique_ptr<vk::VulkanBackend> backend_;
+    std::unique_ptr<Renderer> renderer_;
+    vk::VulkanDevice* gpu_ = nullptr;                // the renderer's one device
     std::unique_ptr<DisplayPass> display_;
     std::unique_ptr<Swapchain> swapchain_;           // windowed
     std::unique_ptr<OffscreenTarget> offscreen_;     // offscreen

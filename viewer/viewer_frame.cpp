@@ -38,7 +38,7 @@ float meanPhotonPower(const Scene& scene, const FrameParams& params) {
 void Viewer::drawFrame() {
     // The frame's parameters; prepare() may reallocate buffers, so the descriptor sets that point
     // at them are written after it (no submitted frame uses them now).
-    const FrameParams& params = backend_->beginFrame();
+    const FrameParams& params = renderer_->beginFrame();
     TargetImage target;
     if (swapchain_) {
         if (!swapchain_->acquire(frame_.acquired, target)) {
@@ -53,10 +53,10 @@ void Viewer::drawFrame() {
     if (dots) {
         dots_->resize(params.width, params.height);
     }
-    bool aov = isAovView(state_.view) && keepsAovs(backend_->settings());
-    VkBuffer image = aov                                   ? backend_->buffer(BINDING_AOVS)
-                     : denoises(backend_->settings()) ? backend_->buffer(BINDING_DENOISED)
-                                                      : backend_->accumulationBuffer();
+    bool aov = isAovView(state_.view) && keepsAovs(renderer_->settings());
+    VkBuffer image = aov                                   ? gpu_->buffer(BINDING_AOVS)
+                     : denoises(renderer_->settings()) ? gpu_->buffer(BINDING_DENOISED)
+                                                      : gpu_->accumulationBuffer();
     display_->setSources(image, dots_->buffer());
 
     bool scripted = options_.frames > 0;
@@ -80,12 +80,13 @@ void Viewer::drawFrame() {
     VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
     passTimer_->reset(cmd);
 
-    backend_->recordFrame(cmd, params);
-    backend_->recordStatsReadback(cmd);
+    gpu_->recordInto(cmd);
+    renderer_->recordFrame();
+    gpu_->recordStatsReadback(cmd);
     passTimer_->mark(cmd, 0);
     if (dots) {
         float depthTolerance = state_.dotsOcclusion ? 0.03f : 0.0f;
-        dots_->record(cmd, *backend_, state_.dotsBrightness / meanPhotonPower(backend_->scene(), params), depthTolerance);
+        dots_->record(cmd, *gpu_, state_.dotsBrightness / meanPhotonPower(renderer_->scene(), params), depthTolerance);
     }
     passTimer_->mark(cmd, 1);
     // The accumulation is complete before the display pass's fragment shader reads it.
@@ -149,8 +150,8 @@ void Viewer::finishFrame() {
     VK_CHECK(vkResetFences(context_->device, 1, &frame_.done));
     frame_.pending = false;
 
-    backend_->endFrame(backend_->frameResult());
-    const FrameStats& stats = backend_->lastFrameStats();
+    renderer_->endFrame(gpu_->frameResult());
+    const FrameStats& stats = renderer_->lastFrameStats();
     FrameRecord record;
     auto now = std::chrono::steady_clock::now();
     record.loopMs = std::chrono::duration<double, std::milli>(now - lastFinish_).count();

@@ -63,14 +63,14 @@ void Viewer::applyChanges() {
     bool sceneSet = false;
     if (state_.lightsChanged) {
         state_.lightsChanged = false;
-        backend_->setScene(lights_.scene());
+        renderer_->setScene(lights_.scene());
         sceneSet = true;
     }
     applySettings();
     if (sceneSet) {
-        backend_->setCamera(camera_.camera());
-    } else if (!sameCamera(camera_.camera(), backend_->camera())) {
-        backend_->moveCamera(camera_.camera());  // the history follows it (--reproject)
+        renderer_->setCamera(camera_.camera());
+    } else if (!sameCamera(camera_.camera(), renderer_->camera())) {
+        renderer_->moveCamera(camera_.camera());  // the history follows it (--reproject)
     }
 }
 
@@ -89,14 +89,14 @@ void Viewer::applySettings() {
         s.aov = s.aov || isAovView(state_.view);  // the auxiliary images are kept to be shown
         s.exposure = state_.exposure;  // display only: kept in step, never a reason to restart
         s.tonemap = state_.tonemap;
-        const RenderSettings& current = backend_->settings();
+        const RenderSettings& current = renderer_->settings();
         if (!changed && s.width == current.width && s.height == current.height && s.view == current.view &&
             s.aov == current.aov) {
             return;
         }
         try {
-            backend_->setSettings(s);
-            backend_->prepare();
+            renderer_->setSettings(s);
+            renderer_->prepare();
             goodSettings_ = s;
             return;
         } catch (const InputError& e) {
@@ -156,11 +156,11 @@ void Viewer::installScene(const Scene& scene, const std::string& path, bool keep
         chooseDefaults(state_.settings, true);
         chooseInteractive(state_.settings);
         chooseSpectral(state_.settings, scene);
-        choosePhotons(state_.settings, backend_->runsOnCpu());
+        choosePhotons(state_.settings, renderer_->runsOnCpu());
         state_.exposure = scene.render.exposure;
         state_.tonemap = scene.render.tonemap;
     }
-    backend_->setScene(lights_.scene());
+    renderer_->setScene(lights_.scene());
     state_.settingsChanged = true;
     for (const std::string& warning : scene.warnings) {
         report(warning);

@@ -129,7 +129,7 @@ void Transfers::run(const std::function<void(VkCommandBuffer)>& record) {
     vkFreeCommandBuffers(context_.device, pool_, 1, &cmd);
 }
 
-void Transfers::upload(const Buffer& target, const void* data, VkDeviceSize size) {
+void Transfers::upload(const Buffer& target, const void* data, VkDeviceSize size, VkDeviceSize offset) {
     if (size == 0) {
         return;
     }
@@ -139,7 +139,7 @@ void Transfers::upload(const Buffer& target, const void* data, VkDeviceSize size
         // Earlier commands are done with the target before the copy overwrites it.
         memoryBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT,
                       VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
-        VkBufferCopy region{0, 0, size};
+        VkBufferCopy region{0, offset, size};
         vkCmdCopyBuffer(cmd, staging.handle(), target.handle(), 1, &region);
         // The copy is written before any later command (of any later submission) uses the buffer.
         memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,

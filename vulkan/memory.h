@@ -61,9 +61,9 @@ public:
     // Records commands with `record`, submits them and waits until they are done.
     void run(const std::function<void(VkCommandBuffer)>& record);
 
-    // Host → device buffer (at offset 0), through a staging buffer. Later commands of any
+    // Host → device buffer (from byte `offset`), through a staging buffer. Later commands of any
     // submission see the data.
-    void upload(const Buffer& target, const void* data, VkDeviceSize size);
+    void upload(const Buffer& target, const void* data, VkDeviceSize size, VkDeviceSize offset = 0);
 
     // Device buffer → host, through a staging buffer, after every earlier command's writes.
     void download(const Buffer& source, VkDeviceSize offset, void* data, VkDeviceSize size);

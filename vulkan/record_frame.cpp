@@ -1,22 +1,16 @@
-// One frame as commands: the parameters, then the stages of shared/stages.h in order, each with
-// the barrier that orders its writes before the next stage's reads, and a timestamp after it.
+// One frame as commands: the parameters, then the stages of shared/stages.h in the order the
+// Renderer runs them, each with the barrier that orders its writes before the next stage's reads,
+// and a timestamp after it.
 #include <stdexcept>
 #include <string>
 
-#include "backend.h"
+#include "device.h"
 #include "glsl/dispatch.h"
 #include "shared/progressive.h"
 
 namespace photon::vk {
 
-void VulkanBackend::recordFrame(VkCommandBuffer cmd, const FrameParams& params) {
-    recordFrameStart(cmd, params);
-    for (const StageInfo& stage : kStages) {
-        recordStage(cmd, stage.id, params);
-    }
-}
-
-void VulkanBackend::recordFrameStart(VkCommandBuffer cmd, const FrameParams& params) {
+void VulkanDevice::recordFrameStart(VkCommandBuffer cmd, const FrameParams& params, bool resume) {
     Pipelines& p = pipelines_;
     if (context_->timestampValidBits > 0) {
         vkCmdResetQueryPool(cmd, frame_.timestamps, 0, kTimestampCount);
@@ -29,7 +23,9 @@ void VulkanBackend::recordFrameStart(VkCommandBuffer cmd, const FrameParams& par
                   VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
                   VK_ACCESS_TRANSFER_WRITE_BIT);
     vkCmdUpdateBuffer(cmd, buffers_[BINDING_PARAMS].handle(), 0, sizeof(FrameParams), &params);
-    vkCmdFillBuffer(cmd, buffers_[BINDING_COUNTERS].handle(), 0, COUNTER_COUNT * sizeof(std::uint32_t), 0u);
+    if (!resume) {
+        vkCmdFillBuffer(cmd, buffers_[BINDING_COUNTERS].handle(), 0, COUNTER_COUNT * sizeof(std::uint32_t), 0u);
+    }
     if (cellCountsDirty_) {
         vkCmdFillBuffer(cmd, buffers_[BINDING_CELL_COUNTS].handle(), 0, VK_WHOLE_SIZE, 0u);
         cellCountsDirty_ = false;
@@ -41,9 +37,9 @@ void VulkanBackend::recordFrameStart(VkCommandBuffer cmd, const FrameParams& par
 }
 
 // The stage's commands, by its function below (named as the stage), then timestamp stage + 1.
-void VulkanBackend::recordStage(VkCommandBuffer cmd, std::uint32_t stage, const FrameParams& params) {
-#define PH_VULKAN_STAGE(NAME, id, name, label) &VulkanBackend::name,
-    static constexpr void (VulkanBackend::*kRecord[])(VkCommandBuffer, const FrameParams&) = {PH_STAGES(PH_VULKAN_STAGE)};
+void VulkanDevice::recordStage(VkCommandBuffer cmd, std::uint32_t stage, const FrameParams& params) {
+#define PH_VULKAN_STAGE(NAME, id, name, label) &VulkanDevice::name,
+    static constexpr void (VulkanDevice::*kRecord[])(VkCommandBuffer, const FrameParams&) = {PH_STAGES(PH_VULKAN_STAGE)};
     if (stage >= STAGE_COUNT) {
         throw std::logic_error("Vulkan: unknown stage " + std::to_string(stage));
     }
@@ -51,14 +47,14 @@ void VulkanBackend::recordStage(VkCommandBuffer cmd, std::uint32_t stage, const 
     timestamp(cmd, stage + 1);
 }
 
-void VulkanBackend::timestamp(VkCommandBuffer cmd, std::uint32_t index) {
+void VulkanDevice::timestamp(VkCommandBuffer cmd, std::uint32_t index) {
     if (context_->timestampValidBits > 0) {
         vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, frame_.timestamps, index);
     }
 }
 
 // One invocation per pixel, in tiles.
-void VulkanBackend::dispatchPixels(VkCommandBuffer cmd, VkPipeline pipeline, const FrameParams& params) {
+void VulkanDevice::dispatchPixels(VkCommandBuffer cmd, VkPipeline pipeline, const FrameParams& params) {
     std::uint32_t tilesX = (params.width + PIXEL_TILE_X - 1) / PIXEL_TILE_X;
     std::uint32_t tilesY = (params.height + PIXEL_TILE_Y - 1) / PIXEL_TILE_Y;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
@@ -66,14 +62,14 @@ void VulkanBackend::dispatchPixels(VkCommandBuffer cmd, VkPipeline pipeline, con
 }
 
 // One invocation per path of both passes.
-void VulkanBackend::tracePhotons(VkCommandBuffer cmd, const FrameParams& params) {
+void VulkanDevice::tracePhotons(VkCommandBuffer cmd, const FrameParams& params) {
     dispatch(cmd, pipelines_, kTracePhotons, params.pathCount, GROUP_SIZE);
     // The photons and their counters are written before the grid build reads them.
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
 }
 
-void VulkanBackend::tracePixels(VkCommandBuffer cmd, const FrameParams& params) {
+void VulkanDevice::tracePixels(VkCommandBuffer cmd, const FrameParams& params) {
     dispatchPixels(cmd, pipelines_.pipeline[kTracePixels], params);
     // The hit points are written before gather reads them.
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
@@ -81,7 +77,7 @@ void VulkanBackend::tracePixels(VkCommandBuffer cmd, const FrameParams& params) 
 }
 
 // The passes in order, the restore pass reading what save wrote of other pixels.
-void VulkanBackend::reproject(VkCommandBuffer cmd, const FrameParams& params) {
+void VulkanDevice::reproject(VkCommandBuffer cmd, const FrameParams& params) {
     if ((params.flags & FLAG_REPROJECT) == 0u) {
         return;
     }
@@ -93,7 +89,7 @@ void VulkanBackend::reproject(VkCommandBuffer cmd, const FrameParams& params) {
 
 // Passes of one shader over the pixels, in order, each after the one before has written (the
 // pass number as push constant).
-void VulkanBackend::dispatchPasses(VkCommandBuffer cmd, Shader shader, std::uint32_t passes, const FrameParams& params) {
+void VulkanDevice::dispatchPasses(VkCommandBuffer cmd, Shader shader, std::uint32_t passes, const FrameParams& params) {
     for (std::uint32_t pass = 0; pass < passes; ++pass) {
         if (pass > 0) {
             memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
@@ -108,7 +104,7 @@ void VulkanBackend::dispatchPasses(VkCommandBuffer cmd, Shader shader, std::uint
 }
 
 // With the pipeline of the frame's estimator and mode.
-void VulkanBackend::gather(VkCommandBuffer cmd, const FrameParams& params) {
+void VulkanDevice::gather(VkCommandBuffer cmd, const FrameParams& params) {
     dispatchPixels(cmd, pipelines_.gather(params.estimator, params.globalMode,
                                           sppmStarts(params.estimator, params.view, params.accumulated)),
                    params);
@@ -117,17 +113,17 @@ void VulkanBackend::gather(VkCommandBuffer cmd, const FrameParams& params) {
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
 }
 
-void VulkanBackend::accumulate(VkCommandBuffer cmd, const FrameParams& params) {
+void VulkanDevice::accumulate(VkCommandBuffer cmd, const FrameParams& params) {
     dispatchPixels(cmd, pipelines_.pipeline[kAccumulate], params);
     // The running mean and the auxiliary images are written before denoise reads them; the
-    // caller orders its own reads of the accumulation (recordFrame()).
+    // caller orders its own reads of the accumulation (recordInto()).
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
 }
 
 // The passes in order, each reading what the one before wrote. The last writes `denoised`: the
 // caller orders its own reads of it.
-void VulkanBackend::denoise(VkCommandBuffer cmd, const FrameParams& params) {
+void VulkanDevice::denoise(VkCommandBuffer cmd, const FrameParams& params) {
     if ((params.flags & FLAG_DENOISE) == 0u) {
         return;
     }
@@ -136,7 +132,7 @@ void VulkanBackend::denoise(VkCommandBuffer cmd, const FrameParams& params) {
 
 // A counting sort of each map's photons by cell. The count and scatter passes run over the photons
 // actually stored, through group counts that gridArgs writes from the counters.
-void VulkanBackend::buildGrid(VkCommandBuffer cmd, const FrameParams& params) {
+void VulkanDevice::buildGrid(VkCommandBuffer cmd, const FrameParams& params) {
     const Pipelines& p = pipelines_;
     VkBuffer counters = buffers_[BINDING_COUNTERS].handle();
     auto dispatchPerMap = [&](Shader shader) {

@@ -17,7 +17,7 @@ struct AovImages {
     Image variance;  // x: variance of the image's luminance (of the mean of `frames` frames, from their moments)
 };
 
-// From a readback of the AOV buffer (Backend::readAovs()) of a width × height image of `frames` frames.
+// From a readback of the AOV buffer (Renderer::readAovs()) of a width × height image of `frames` frames.
 AovImages aovImages(const std::vector<PixelAov>& aovs, std::uint32_t width, std::uint32_t height, std::uint32_t frames);
 
 // The layers of an EXR file that hold them: albedo.RGB, normal.XYZ, depth.Z, variance.Y.

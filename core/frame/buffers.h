@@ -16,7 +16,7 @@ namespace photon {
 struct BufferPlan {
     std::uint64_t elements[BINDING_COUNT] = {};  // by binding; the parameters are one FrameParams
     std::uint64_t scratchBytes = 0;              // a backend's own working memory besides the buffers
-                                                 // (Backend::adjustPlan: scan and sort storage)
+                                                 // (Renderer::adjustPlan: scan and sort storage)
 
     std::uint64_t bytes(std::uint32_t binding) const;
     std::uint64_t totalBytes() const;

@@ -118,11 +118,14 @@ FrameParams makeFrameParams(const Scene& scene, const CameraDesc& camera, const 
         p.sppm[map] = radii.sppm[map];
     }
     p.alpha = settings.alpha;
-    std::uint64_t total = budget.totalPaths();
-    std::uint64_t first = total * split.rank / split.ranks;
-    p.pathFirst = static_cast<std::uint32_t>(first);
-    p.pathCount = static_cast<std::uint32_t>(total * (split.rank + 1) / split.ranks - first);
+    splitPaths(p, budget.totalPaths(), split);
     return p;
+}
+
+void splitPaths(FrameParams& params, std::uint64_t totalPaths, const PathSplit& split) {
+    std::uint64_t first = totalPaths * split.rank / split.ranks;
+    params.pathFirst = static_cast<std::uint32_t>(first);
+    params.pathCount = static_cast<std::uint32_t>(totalPaths * (split.rank + 1) / split.ranks - first);
 }
 
 }  // namespace photon

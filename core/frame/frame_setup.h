@@ -68,4 +68,8 @@ FrameParams makeFrameParams(const Scene& scene, const CameraDesc& camera, const 
                             const PhotonBudget& budget, std::uint32_t frameIndex, std::uint32_t accumulated,
                             const FrameRadii& radii, const PathSplit& split = {});
 
+// The frame's paths of `split`'s rank: consecutive index ranges, so that a rank r of N split again
+// into n parts gives parts r·n to r·n + n − 1 of N·n.
+void splitPaths(FrameParams& params, std::uint64_t totalPaths, const PathSplit& split);
+
 }  // namespace photon

@@ -93,7 +93,7 @@ std::uint64_t countInCells(const std::vector<Photon>& photons, const std::vector
 
 }  // namespace
 
-PhotonUse measurePhotonUse(Backend& backend) {
+PhotonUse measurePhotonUse(Renderer& backend) {
     PhotonUse use;
     PhotonMaps maps = backend.readPhotonMaps();
     std::vector<HitPoint> hitPoints = backend.readHitPoints();

@@ -5,7 +5,7 @@
 
 #include <cstdint>
 
-#include "core/frame/backend.h"
+#include "core/frame/renderer.h"
 
 namespace photon {
 
@@ -20,6 +20,6 @@ struct PhotonUse {
 // its tangent plane, arriving from the front). The radii are the pixels' own under sppm (as the
 // frame left them, after its update) and the frame's query radius otherwise (knn's maximum); the
 // cell estimate counts the photons of the cells that hold a visible point.
-PhotonUse measurePhotonUse(Backend& backend);
+PhotonUse measurePhotonUse(Renderer& backend);
 
 }  // namespace photon

@@ -11,20 +11,20 @@ RenderResult render(Scene scene, RenderSettings settings, const RenderJob& job, 
     validateSettings(settings);
     auto start = std::chrono::steady_clock::now();
     auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
-    std::unique_ptr<Backend> backend = createBackend(job.backend, job.device);
-    choosePhotons(settings, backend->runsOnCpu());
-    backend->setScene(std::move(scene));
-    backend->setSettings(settings);
-    backend->prepare();
+    std::unique_ptr<Renderer> renderer = createRenderer(job.backend, job.device);
+    choosePhotons(settings, renderer->runsOnCpu());
+    renderer->setScene(std::move(scene));
+    renderer->setSettings(settings);
+    renderer->prepare();
 
     RenderResult result;
-    result.backend = backend->name();
-    result.device = backend->deviceName();
+    result.backend = renderer->name();
+    result.device = renderer->deviceName();
     bool timed = job.seconds > 0.0;
     std::uint32_t maxFrames = timed && !job.framesCap ? 0xffffffffu : settings.frames;
     for (std::uint32_t f = 0; f < maxFrames; ++f) {
-        backend->renderFrame();
-        result.times.push_back(backend->lastFrameStats().ms);
+        renderer->renderFrame();
+        result.times.push_back(renderer->lastFrameStats().ms);
         double seconds = elapsed();
         if (observer.frame) {
             observer.frame(f + 1, seconds);
@@ -38,18 +38,18 @@ RenderResult render(Scene scene, RenderSettings settings, const RenderJob& job, 
         }
     }
     if (observer.finished) {
-        observer.finished(*backend);
+        observer.finished(*renderer);
     }
-    result.image = backend->image();
+    result.image = renderer->image();
     if (!result.times.empty()) {
-        result.times.back()[STAGE_DENOISE] = backend->lastFrameStats().ms[STAGE_DENOISE];  // run by image(), once
+        result.times.back()[STAGE_DENOISE] = renderer->lastFrameStats().ms[STAGE_DENOISE];  // run by image(), once
     }
-    result.last = backend->lastFrameStats();
+    result.last = renderer->lastFrameStats();
     if (denoises(settings)) {
-        result.raw = backend->rawImage();
+        result.raw = renderer->rawImage();
     }
     if (settings.aov) {
-        result.aovs = aovImages(backend->readAovs(), settings.width, settings.height, std::uint32_t(result.times.size()));
+        result.aovs = aovImages(renderer->readAovs(), settings.width, settings.height, std::uint32_t(result.times.size()));
     }
     result.seconds = elapsed();
     return result;

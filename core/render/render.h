@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "core/frame/aov_images.h"
-#include "core/frame/backend.h"
+#include "core/frame/renderer.h"
 #include "core/image/image.h"
 #include "core/scene/scene.h"
 
@@ -21,20 +21,20 @@ namespace photon {
 // How long and where: `seconds` > 0 renders until that much time has passed (at most
 // settings.frames frames if `framesCap`), else exactly settings.frames frames.
 struct RenderJob {
-    std::string backend = "auto";  // auto|cpu|cuda|vulkan
-    BackendOptions device;
+    std::string backend = "auto";  // auto|cpu|cuda|vulkan, or a list of them, a device each ("cpu,cpu")
+    DeviceOptions device;
     double seconds = 0.0;
     bool framesCap = false;
 };
 
 // Called on the rendering thread. `frame` after each frame (frames done, seconds since the start);
 // `cancel` after each frame: true stops the render, which still returns the image so far.
-// `finished` sees the backend once the last frame is done, before its images are read back (the
+// `finished` sees the renderer once the last frame is done, before its images are read back (the
 // photon maps, the frame parameters: what a statistics file reports).
 struct RenderObserver {
     std::function<void(std::uint32_t frames, double seconds)> frame;
     std::function<bool()> cancel;
-    std::function<void(Backend& backend)> finished;
+    std::function<void(Renderer& renderer)> finished;
 };
 
 struct RenderResult {

@@ -1,4 +1,4 @@
-// What a backend knows at the end of a render, as photon-render's --stats file and the Python
+// What a renderer knows at the end of a render, as photon-render's --stats file and the Python
 // module's Renderer.stats() report it: the backend and device, the scene's costs, each map's
 // photons and grid, the environment's aim. The stage times, wall time and warnings of a whole
 // render are the caller's to add.
@@ -6,10 +6,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/frame/backend.h"
+#include "core/frame/renderer.h"
 
 namespace photon {
 
-nlohmann::json renderStatsJson(Backend& backend);
+nlohmann::json renderStatsJson(Renderer& renderer);
 
 }  // namespace photon

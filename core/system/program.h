@@ -47,6 +47,24 @@ inline CLI::Option* addSwitch(CLI::App& app, const std::string& names, bool& val
 inline const CLI::Validator kFileName{[](std::string& name) { return name.empty() ? std::string("an empty file name") : std::string(); },
                                       "FILE"};
 
+// --backend: one of auto|cpu|cuda|vulkan, or a comma-separated list of them (one device each).
+inline const CLI::Validator kBackendList{
+    [](std::string& list) {
+        std::size_t start = 0;
+        for (;;) {
+            std::size_t comma = list.find(',', start);
+            std::string one = list.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+            if (one != "auto" && one != "cpu" && one != "cuda" && one != "vulkan") {
+                return "'" + one + "' is not a backend (auto|cpu|cuda|vulkan, or a list such as cpu,cpu)";
+            }
+            if (comma == std::string::npos) {
+                return std::string();
+            }
+            start = comma + 1;
+        }
+    },
+    "BACKEND[,BACKEND...]"};
+
 // Parses the command line: --help prints the help and returns 0; a bad command line throws
 // InputError with CLI11's one-line reason; otherwise returns -1 (go on).
 inline int parseCommandLine(CLI::App& app, int argc, char** argv) {

@@ -12,7 +12,7 @@
 #include "core/image/image.h"
 #include "core/scene/scene.h"
 #include "core/settings/settings.h"
-#include "cpu/cpu_backend.h"
+#include "cpu/cpu_device.h"
 
 namespace photon::fuzz {
 
@@ -25,7 +25,7 @@ inline void renderTiny(const Scene& scene, RenderSettings settings, std::uint32_
     settings.gatherRays = std::min(settings.gatherRays, 4u);
     settings.lightSamples = std::min(settings.lightSamples, 2u);
     settings.gridResolution = std::min(settings.gridResolution, 64u);
-    auto backend = createCpuBackend();
+    auto backend = createCpuDevice();
     backend->setScene(scene);
     backend->setSettings(settings);
     for (std::uint32_t f = 0; f < settings.frames; ++f) {

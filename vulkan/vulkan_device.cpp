@@ -1,16 +1,16 @@
-// createVulkanBackend() and vulkanDeviceCount(): the entry points apps/backends.cpp uses.
-#include "vulkan_backend.h"
+// createVulkanDevice() and vulkanDeviceCount(): the entry points core/render/devices.cpp uses.
+#include "vulkan_device.h"
 
-#include "backend.h"
+#include "device.h"
 #include "context.h"
 
 namespace photon {
 
-std::unique_ptr<Backend> createVulkanBackend(const BackendOptions& options) {
+std::unique_ptr<Device> createVulkanDevice(const DeviceOptions& options) {
     vk::ContextOptions contextOptions;
     contextOptions.device = options.device;
     contextOptions.validation = options.validation;
-    return std::make_unique<vk::VulkanBackend>(std::make_shared<vk::Context>(contextOptions));
+    return std::make_unique<vk::VulkanDevice>(std::make_shared<vk::Context>(contextOptions));
 }
 
 namespace {

@@ -1,4 +1,4 @@
-#include "cpu_backend.h"
+#include "cpu_device.h"
 
 #include <algorithm>
 #include <chrono>
@@ -27,7 +27,7 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
 
 std::uint64_t paddedBytes(std::uint64_t bytes) { return (bytes + 15) / 16 * 16; }
 
-// The backend's buffers: one 16-byte aligned array per binding, zeroed when sized.
+// The device's buffers: one 16-byte aligned array per binding, zeroed when sized.
 class HostBuffers {
 public:
     void resize(std::uint32_t binding, std::uint64_t bytes) {
@@ -48,7 +48,7 @@ private:
     std::vector<glm::vec4> storage_[BINDING_COUNT];
 };
 
-class CpuBackend final : public Backend {
+class CpuDevice final : public Device {
 public:
     std::string name() const override { return "cpu"; }
 
@@ -64,15 +64,14 @@ public:
         return limits;
     }
 
-protected:
     // The readback of the image and its encoding live beside the buffers. The GPUs' ordering
-    // arrays go unused: this backend sorts each cell (buildGrid).
+    // arrays go unused: this device sorts each cell (buildGrid).
     void adjustPlan(BufferPlan& plan, const PhotonBudget&) override {
         plan.scratchBytes = plan.elements[BINDING_ACCUMULATION] * kHostBytesPerPixel;
         plan.elements[BINDING_PHOTON_ORDER] = 1;
     }
 
-    // The scene stays where the Backend keeps it; the stages read its arrays in place.
+    // The scene stays where the Renderer keeps it; the stages read its arrays in place.
     void uploadScene(const Scene& scene, const BufferPlan&) override { scene_ = &scene; }
 
     void allocate(const BufferPlan& plan, const PhotonBudget&, std::uint32_t width, std::uint32_t height) override {
@@ -82,15 +81,15 @@ protected:
         pixels_ = std::size_t(width) * height;
     }
 
-    void beginStages(const FrameParams& params) override {
-        bind(params);
+    void beginStages(const FrameParams& params, bool resume) override {
+        bind(params, resume);
         result_ = FrameResult{};
     }
 
     // Each stage by its function below, timed on the host's steady clock.
     void runStage(std::uint32_t stage, const FrameParams&) override {
-#define PH_CPU_STAGE(NAME, id, name, label) &CpuBackend::name,
-        static constexpr void (CpuBackend::*kRun[])() = {PH_STAGES(PH_CPU_STAGE)};
+#define PH_CPU_STAGE(NAME, id, name, label) &CpuDevice::name,
+        static constexpr void (CpuDevice::*kRun[])() = {PH_STAGES(PH_CPU_STAGE)};
         auto t = std::chrono::steady_clock::now();
         (this->*kRun[stage])();
         result_.ms[stage] = millisecondsSince(t);
@@ -108,8 +107,12 @@ protected:
         std::memcpy(data, static_cast<const char*>(source) + offset, bytes);
     }
 
+    void writeBuffer(std::uint32_t binding, std::uint64_t offset, std::uint64_t bytes, const void* data) override {
+        std::memcpy(static_cast<char*>(buffers_.data(binding)) + offset, data, bytes);
+    }
+
 private:
-    void bind(const FrameParams& params) {
+    void bind(const FrameParams& params, bool resume) {
         void* pointers[BINDING_COUNT] = {};
         for (const BufferInfo& info : kBuffers) {
             pointers[info.binding] = buffers_.data(info.binding);
@@ -117,7 +120,9 @@ private:
         pointBindings(bindings_, pointers);
         bindSceneArrays(bindings_, *scene_);
         bindings_.params = params;
-        std::fill(bindings_.counters, bindings_.counters + COUNTER_COUNT, 0u);
+        if (!resume) {
+            std::fill(bindings_.counters, bindings_.counters + COUNTER_COUNT, 0u);
+        }
     }
 
     void tracePhotons() {
@@ -222,6 +227,6 @@ private:
 
 }  // namespace
 
-std::unique_ptr<Backend> createCpuBackend() { return std::make_unique<CpuBackend>(); }
+std::unique_ptr<Device> createCpuDevice() { return std::make_unique<CpuDevice>(); }
 
 }  // namespace photon

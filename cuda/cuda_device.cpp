@@ -1,4 +1,4 @@
-#include "cuda_backend.h"
+#include "cuda_device.h"
 
 #include <algorithm>
 #include <stdexcept>
@@ -16,9 +16,9 @@ namespace {
 // Stage boundaries timed with CUDA events: the frame's start, then the end of each stage.
 constexpr std::uint32_t kMarkCount = STAGE_COUNT + 1;
 
-class CudaBackend final : public Backend {
+class CudaDevice final : public Device {
 public:
-    explicit CudaBackend(const BackendOptions& options) : kernels_(options.parity ? &kParityKernels : &kFastKernels) {
+    explicit CudaDevice(const DeviceOptions& options) : kernels_(options.parity ? &kParityKernels : &kFastKernels) {
         int count = cudaDeviceCount();
         if (count == 0) {
             throw RuntimeError("CUDA: no CUDA device is available on this machine");
@@ -39,6 +39,7 @@ public:
                                  " CUDA devices (0 to " + std::to_string(count - 1) + ")");
             }
         }
+        index_ = index;
         CUDA_CHECK(cudaSetDevice(index), "setup");
         CUDA_CHECK(cudaGetDeviceProperties(&properties_, index), "setup");
         CUDA_CHECK(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking), "setup");
@@ -50,7 +51,8 @@ public:
         counters_.resize(COUNTER_COUNT, "setup");
     }
 
-    ~CudaBackend() override {
+    ~CudaDevice() override {
+        use();
         cudaStreamSynchronize(stream_);
         for (cudaEvent_t e : events_) {
             cudaEventDestroy(e);
@@ -65,6 +67,7 @@ public:
     const LaunchConfig& launchConfig() const { return config_; }
 
     MemoryLimits memoryLimits() override {
+        use();
         std::size_t freeBytes = 0;
         std::size_t totalBytes = 0;
         CUDA_CHECK(cudaMemGetInfo(&freeBytes, &totalBytes), "memory check");
@@ -79,11 +82,11 @@ public:
         return limits;
     }
 
-protected:
     // The scan's storage.
     void adjustPlan(BufferPlan& plan, const PhotonBudget&) override { plan.scratchBytes = 64u << 20; }
 
     void uploadScene(const Scene& scene, const BufferPlan& plan) override {
+        use();
         forEachSceneBuffer(scene, plan, [&](std::uint32_t binding, const void* data, std::uint64_t bytes) {
             DeviceArray<unsigned char>& buffer = buffers_[binding];
             buffer.resize(bytes, "upload scene");
@@ -92,6 +95,7 @@ protected:
     }
 
     void allocate(const BufferPlan& plan, const PhotonBudget& budget, std::uint32_t width, std::uint32_t height) override {
+        use();
         resizeChangedBuffers(
             plan, [&](std::uint32_t binding, std::uint64_t bytes) { return buffers_[binding].bytes() == bytes; },
             [&](std::uint32_t binding, std::uint64_t bytes) {
@@ -110,13 +114,18 @@ protected:
     }
 
     // One stream: each stage's kernels, then an event at its end.
-    void beginStages(const FrameParams& params) override {
+    void beginStages(const FrameParams& params, bool resume) override {
+        use();
         bind(params);
         CUDA_CHECK(cudaEventRecord(events_[0], stream_), "frame start");
-        CUDA_CHECK(cudaMemsetAsync(bindings_.counters, 0, COUNTER_COUNT * sizeof(std::uint32_t), stream_), "frame start");
+        if (!resume) {
+            CUDA_CHECK(cudaMemsetAsync(bindings_.counters, 0, COUNTER_COUNT * sizeof(std::uint32_t), stream_),
+                       "frame start");
+        }
     }
 
     void runStage(std::uint32_t stage, const FrameParams& params) override {
+        use();
         if (StageLaunch launch = kernels_->stage[stage]) {
             launch(bindings_, config_, stream_);
         } else if (stage == STAGE_BUILD_GRID) {
@@ -128,10 +137,12 @@ protected:
     }
 
     void skipStage(std::uint32_t stage) override {
+        use();
         CUDA_CHECK(cudaEventRecord(events_[stage + 1], stream_), kStages[stage].name);
     }
 
     FrameResult endStages() override {
+        use();
         readCounters();
         FrameResult result;
         for (std::uint32_t i = 0; i < STAGE_COUNT; ++i) {
@@ -146,6 +157,7 @@ protected:
     // One copy into pinned memory, then into the caller's (or, to measure the difference,
     // straight into the caller's pageable memory).
     void readBuffer(std::uint32_t binding, std::uint64_t offset, std::uint64_t bytes, void* data) override {
+        use();
         const unsigned char* source = buffers_[binding].data() + offset;
         bool pixels = binding != BINDING_PARAMS && bufferInfo(binding).size == BUFFER_PER_PIXEL;
         if (!pixels || !config_.pinnedReadback || bytes > hostPixels_.bytes()) {
@@ -157,7 +169,12 @@ protected:
         std::copy_n(reinterpret_cast<const unsigned char*>(hostPixels_.data()), bytes, static_cast<unsigned char*>(data));
     }
 
-public:
+    void writeBuffer(std::uint32_t binding, std::uint64_t offset, std::uint64_t bytes, const void* data) override {
+        use();
+        CUDA_CHECK(cudaStreamSynchronize(stream_), "write");
+        CUDA_CHECK(cudaMemcpy(buffers_[binding].data() + offset, data, bytes, cudaMemcpyHostToDevice), "write");
+    }
+
     PrimaryRayTiming timePrimaryRays(int repeats) {
         if (width_ == 0) {
             throw std::logic_error("timePrimaryRays before a frame");
@@ -226,6 +243,11 @@ private:
         CUDA_CHECK(cudaStreamSynchronize(stream_), "frame");
     }
 
+    // This device's GPU for the calls that follow: several CudaDevices in one process (one per
+    // GPU) take turns on the host thread.
+    void use() const { cudaSetDevice(index_); }
+
+    int index_ = 0;
     const StageKernels* kernels_;  // fast or parity
     bool parity_ = false;
     cudaDeviceProp properties_{};
@@ -253,22 +275,22 @@ int cudaDeviceCount() {
     return count;
 }
 
-std::unique_ptr<Backend> createCudaBackend(const BackendOptions& options) {
-    return std::make_unique<CudaBackend>(options);
+std::unique_ptr<Device> createCudaDevice(const DeviceOptions& options) {
+    return std::make_unique<CudaDevice>(options);
 }
 
-PrimaryRayTiming timeCudaPrimaryRays(Backend& backend, int repeats) {
-    auto* cuda = dynamic_cast<CudaBackend*>(&backend);
+PrimaryRayTiming timeCudaPrimaryRays(Device& device, int repeats) {
+    auto* cuda = dynamic_cast<CudaDevice*>(&device);
     return cuda ? cuda->timePrimaryRays(repeats) : PrimaryRayTiming{};
 }
 
-LaunchConfig cudaLaunchConfig(Backend& backend) {
-    auto* cuda = dynamic_cast<CudaBackend*>(&backend);
+LaunchConfig cudaLaunchConfig(Device& device) {
+    auto* cuda = dynamic_cast<CudaDevice*>(&device);
     return cuda ? cuda->launchConfig() : LaunchConfig{};
 }
 
-void setCudaLaunchConfig(Backend& backend, const LaunchConfig& config) {
-    if (auto* cuda = dynamic_cast<CudaBackend*>(&backend)) {
+void setCudaLaunchConfig(Device& device, const LaunchConfig& config) {
+    if (auto* cuda = dynamic_cast<CudaDevice*>(&device)) {
         cuda->setLaunchConfig(config);
     }
 }

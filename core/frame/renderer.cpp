@@ -1,9 +1,10 @@
-#include "core/frame/backend.h"
+#include "core/frame/renderer.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
+#include <utility>
 
 #include "core/frame/scene_settings.h"
 #include "core/settings/setting_specs.h"
@@ -31,7 +32,36 @@ GridStats gridStats(const std::vector<std::uint32_t>& cellStart) {
     return s;
 }
 
-void Backend::setScene(Scene scene) {
+Renderer::Renderer(std::vector<std::unique_ptr<Device>> devices, std::unique_ptr<Collective> collective)
+    : devices_(std::move(devices)), collective_(std::move(collective)) {
+    if (devices_.empty() || !collective_) {
+        throw std::invalid_argument("a renderer needs a device and a collective");
+    }
+}
+
+Renderer::~Renderer() = default;
+
+std::string Renderer::name() const {
+    std::string names;
+    for (const auto& d : devices_) {
+        names += (names.empty() ? "" : ",") + d->name();
+    }
+    return names;
+}
+
+std::string Renderer::deviceName() const {
+    std::string names;
+    for (const auto& d : devices_) {
+        names += (names.empty() ? "" : " + ") + d->deviceName();
+    }
+    return names;
+}
+
+bool Renderer::runsOnCpu() const {
+    return std::all_of(devices_.begin(), devices_.end(), [](const auto& d) { return d->runsOnCpu(); });
+}
+
+void Renderer::setScene(Scene scene) {
     scene_ = std::move(scene);
     camera_ = scene_.camera;
     sceneDirty_ = true;
@@ -41,7 +71,7 @@ void Backend::setScene(Scene scene) {
     accumulated_ = 0;
 }
 
-void Backend::setSettings(const RenderSettings& settings) {
+void Renderer::setSettings(const RenderSettings& settings) {
     settings_ = settings;
     std::fill(std::begin(grownCapacity_), std::end(grownCapacity_), 0u);
     allocationDirty_ = true;
@@ -50,13 +80,13 @@ void Backend::setSettings(const RenderSettings& settings) {
     accumulated_ = 0;
 }
 
-void Backend::setCamera(const CameraDesc& camera) {
+void Renderer::setCamera(const CameraDesc& camera) {
     camera_ = camera;
     accumulated_ = 0;
     footprintsDirty_ = true;
 }
 
-void Backend::moveCamera(const CameraDesc& camera) {
+void Renderer::moveCamera(const CameraDesc& camera) {
     if (!settings_.reproject || accumulated_ == 0) {
         setCamera(camera);
         return;
@@ -68,9 +98,9 @@ void Backend::moveCamera(const CameraDesc& camera) {
     camera_ = camera;
 }
 
-void Backend::resetAccumulation() { accumulated_ = 0; }
+void Renderer::resetAccumulation() { accumulated_ = 0; }
 
-void Backend::setPathSplit(const PathSplit& split) {
+void Renderer::setPathSplit(const PathSplit& split) {
     if (split.ranks == 0 || split.rank >= split.ranks) {
         throw std::invalid_argument("path split: rank " + std::to_string(split.rank) + " of " + std::to_string(split.ranks));
     }
@@ -78,7 +108,7 @@ void Backend::setPathSplit(const PathSplit& split) {
     accumulated_ = 0;
 }
 
-void Backend::prepare() {
+void Renderer::prepare() {
     if (!sceneDirty_ && !allocationDirty_) {
         return;
     }
@@ -91,9 +121,13 @@ void Backend::prepare() {
     for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
         budget.capacity[m] = std::max(budget.capacity[m], grownCapacity_[m]);
     }
-    BufferPlan plan = planBuffers(scene_, budget, settings_.width, settings_.height);
-    adjustPlan(plan, budget);
-    checkMemory(plan, memoryLimits(), settings_.width, settings_.height);
+    std::vector<BufferPlan> plans;
+    for (const auto& device : devices_) {
+        BufferPlan plan = planBuffers(scene_, budget, settings_.width, settings_.height);
+        device->adjustPlan(plan, budget);
+        checkMemory(plan, device->memoryLimits(), settings_.width, settings_.height);
+        plans.push_back(plan);
+    }
     std::uint64_t hostImage = std::uint64_t(settings_.width) * settings_.height * kHostBytesPerPixel;
     if (!buffersInHostMemory() && hostImage > availableHostMemory()) {
         throw InputError("the image needs " + formatMiB(hostImage) + " of host memory at " + std::to_string(settings_.width) +
@@ -101,27 +135,36 @@ void Backend::prepare() {
                          whatToLower(BUFFER_PER_PIXEL));
     }
     if (sceneDirty_) {
-        uploadScene(scene_, plan);
+        for (std::size_t d = 0; d < devices_.size(); ++d) {
+            devices_[d]->uploadScene(scene_, plans[d]);
+        }
         sceneDirty_ = false;
     }
     bool same = std::equal(std::begin(budget.cells), std::end(budget.cells), std::begin(allocatedBudget_.cells)) &&
                 allocatedWidth_ == settings_.width && allocatedHeight_ == settings_.height &&
-                plan.scratchBytes == plan_.scratchBytes;
-    for (const BufferInfo& info : kBuffers) {
-        same = same && (info.size == BUFFER_PER_SCENE || plan.elements[info.binding] == plan_.elements[info.binding]);
+                devicePlans_.size() == plans.size();
+    for (std::size_t d = 0; same && d < plans.size(); ++d) {
+        same = plans[d].scratchBytes == devicePlans_[d].scratchBytes;
+        for (const BufferInfo& info : kBuffers) {
+            same = same && (info.size == BUFFER_PER_SCENE ||
+                            plans[d].elements[info.binding] == devicePlans_[d].elements[info.binding]);
+        }
     }
     if (!same) {
-        allocate(plan, budget, settings_.width, settings_.height);
+        for (std::size_t d = 0; d < devices_.size(); ++d) {
+            devices_[d]->allocate(plans[d], budget, settings_.width, settings_.height);
+        }
         allocatedBudget_ = budget;
         allocatedWidth_ = settings_.width;
         allocatedHeight_ = settings_.height;
     }
-    plan_ = plan;
+    devicePlans_ = plans;
+    plan_ = plans.front();
     budget_ = budget;
     allocationDirty_ = false;
 }
 
-void Backend::renderFrame() {
+void Renderer::renderFrame() {
     // A first frame that lost photons runs again with room for them: it replaces the
     // accumulation, so nothing of the short frame remains. Later frames keep what they have.
     for (bool first = true;; first = false) {
@@ -132,22 +175,80 @@ void Backend::renderFrame() {
     }
 }
 
-FrameResult Backend::runFrame(const FrameParams& params, bool denoiseOnly) {
-    beginStages(params);
+void Renderer::recordFrame() {
+    if (devices_.size() != 1) {
+        throw std::logic_error("recordFrame: a frame the caller submits runs on one device");
+    }
+    devices_.front()->beginStages(params_);
+    runStages(*devices_.front(), params_, false, 0, STAGE_COUNT);
+    devices_.front()->submitStages();
+}
+
+FrameResult Renderer::runFrame(const FrameParams& params, bool denoiseOnly) {
+    exchange_ = Exchange{};
+    if (devices_.size() > 1 && !denoiseOnly) {
+        return runSharedFrame(params);
+    }
+    Device& device = *devices_.front();
+    device.beginStages(params);
+    runStages(device, params, denoiseOnly, 0, STAGE_COUNT);
+    device.submitStages();
+    return device.endStages();
+}
+
+// Each device its share of the paths, all at once where they run apart (GPUs); the photons into
+// the first device's maps; the rest of the frame there.
+FrameResult Renderer::runSharedFrame(const FrameParams& params) {
+    std::uint32_t n = static_cast<std::uint32_t>(devices_.size());
+    std::vector<FrameParams> shares(n, params);
+    std::vector<Device*> devices;
+    for (std::uint32_t d = 0; d < n; ++d) {
+        splitPaths(shares[d], budget_.totalPaths(), {split_.rank * n + d, split_.ranks * n});
+        devices.push_back(devices_[d].get());
+        devices[d]->beginStages(shares[d]);
+        runStages(*devices[d], shares[d], false, STAGE_TRACE_PHOTONS, STAGE_TRACE_PHOTONS + 1);
+        devices[d]->submitStages();
+    }
+    std::vector<FrameResult> results;
+    for (Device* device : devices) {
+        results.push_back(device->endStages());
+    }
+    exchange_ = collective_->gatherPhotons(devices, shares, results);
+
+    Device& root = *devices.front();
+    root.beginStages(shares.front(), true);
+    runStages(root, shares.front(), false, STAGE_TRACE_PHOTONS + 1, STAGE_COUNT);
+    root.submitStages();
+    FrameResult frame = root.endStages();
+    // The photon pass took as long as its slowest device where the devices run side by side, and
+    // their sum where they take turns on the host's cores.
+    double trace = 0.0;
+    for (std::uint32_t d = 0; d < n; ++d) {
+        double ms = results[d].ms[STAGE_TRACE_PHOTONS];
+        trace = devices[d]->runsOnCpu() ? trace + ms : std::max(trace, ms);
+    }
+    frame.ms[STAGE_TRACE_PHOTONS] = trace;
+    return frame;
+}
+
+// After beginStages(): a whole frame is stages [0, STAGE_COUNT); a part of one runs [first, last)
+// and skips the others.
+void Renderer::runStages(Device& device, const FrameParams& params, bool denoiseOnly, std::uint32_t first,
+                         std::uint32_t last) {
     for (const StageInfo& stage : kStages) {
         bool denoise = stage.id == STAGE_DENOISE;
         bool optional = denoise || stage.id == STAGE_REPROJECT;
         std::uint32_t flag = denoise ? FLAG_DENOISE : FLAG_REPROJECT;
-        if (denoiseOnly ? denoise : !optional || (params.flags & flag) != 0u) {
-            runStage(stage.id, params);
+        bool runs = denoiseOnly ? denoise : !optional || (params.flags & flag) != 0u;
+        if (runs && stage.id >= first && stage.id < last) {
+            device.runStage(stage.id, params);
         } else {
-            skipStage(stage.id);
+            device.skipStage(stage.id);
         }
     }
-    return endStages();
 }
 
-void Backend::denoiseImage() {
+void Renderer::denoiseImage() {
     if (accumulated_ == 0 || denoisedFrames_ == accumulated_ || !denoises(settings_)) {
         return;
     }
@@ -158,7 +259,7 @@ void Backend::denoiseImage() {
     denoisedFrames_ = accumulated_;
 }
 
-void Backend::measureRadii() {
+void Renderer::measureRadii() {
     if (!footprintsDirty_) {
         return;
     }
@@ -169,7 +270,7 @@ void Backend::measureRadii() {
     footprintsDirty_ = false;
 }
 
-const FrameParams& Backend::beginFrame() {
+const FrameParams& Renderer::beginFrame() {
     prepare();
     measureRadii();
     if (accumulated_ == 0) {
@@ -187,7 +288,7 @@ const FrameParams& Backend::beginFrame() {
     return params_;
 }
 
-bool Backend::endFrame(const FrameResult& result, bool mayRepeat) {
+bool Renderer::endFrame(const FrameResult& result, bool mayRepeat) {
     stats_ = FrameStats{};
     stats_.ms = result.ms;
     for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
@@ -198,6 +299,7 @@ bool Backend::endFrame(const FrameResult& result, bool mayRepeat) {
     stats_.environmentHits = result.counters[COUNTER_ENVIRONMENT_HITS];
     stats_.emitted[MAP_GLOBAL] = params_.globalPaths;
     stats_.emitted[MAP_CAUSTIC] = params_.causticPaths;
+    stats_.exchange = exchange_;
     bool dropped = growPhotonMaps();
     if (dropped && accumulated_ == 0 && mayRepeat) {
         return false;
@@ -214,7 +316,7 @@ bool Backend::endFrame(const FrameResult& result, bool mayRepeat) {
     return true;
 }
 
-bool Backend::growPhotonMaps() {
+bool Renderer::growPhotonMaps() {
     bool dropped = false;
     for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
         std::uint32_t stored = stats_.stored[m];
@@ -229,7 +331,7 @@ bool Backend::growPhotonMaps() {
     return dropped;
 }
 
-Image Backend::image() {
+Image Renderer::image() {
     if (accumulated_ == 0) {
         return Image(settings_.width, settings_.height);
     }
@@ -240,51 +342,51 @@ Image Backend::image() {
     return readImage(BINDING_DENOISED);
 }
 
-Image Backend::rawImage() {
+Image Renderer::rawImage() {
     if (accumulated_ == 0) {
         return Image(settings_.width, settings_.height);
     }
     return readImage(BINDING_ACCUMULATION);
 }
 
-Image Backend::readFrame() { return readImage(BINDING_FRAME); }
+Image Renderer::readFrame() { return readImage(BINDING_FRAME); }
 
-Image Backend::readImage(std::uint32_t binding) {
+Image Renderer::readImage(std::uint32_t binding) {
     Image image(allocatedWidth_, allocatedHeight_);
     if (!image.pixels.empty()) {
-        readBuffer(binding, 0, image.pixels.size() * sizeof(glm::vec4), image.pixels.data());
+        devices_.front()->readBuffer(binding, 0, image.pixels.size() * sizeof(glm::vec4), image.pixels.data());
     }
     return image;
 }
 
 template <typename T>
-std::vector<T> Backend::readPerPixel(std::uint32_t binding) {
+std::vector<T> Renderer::readPerPixel(std::uint32_t binding) {
     std::vector<T> elements(std::size_t(allocatedWidth_) * allocatedHeight_);
     if (!elements.empty()) {
-        readBuffer(binding, 0, elements.size() * sizeof(T), elements.data());
+        devices_.front()->readBuffer(binding, 0, elements.size() * sizeof(T), elements.data());
     }
     return elements;
 }
 
-std::vector<HitPoint> Backend::readHitPoints() { return readPerPixel<HitPoint>(BINDING_HIT_POINTS); }
+std::vector<HitPoint> Renderer::readHitPoints() { return readPerPixel<HitPoint>(BINDING_HIT_POINTS); }
 
-std::vector<SppmPixel> Backend::readSppmPixels() { return readPerPixel<SppmPixel>(BINDING_SPPM_PIXELS); }
+std::vector<SppmPixel> Renderer::readSppmPixels() { return readPerPixel<SppmPixel>(BINDING_SPPM_PIXELS); }
 
-std::vector<PixelAov> Backend::readAovs() {
+std::vector<PixelAov> Renderer::readAovs() {
     if (!keepsAovs(settings_) || accumulated_ == 0) {
         return {};
     }
     return readPerPixel<PixelAov>(BINDING_AOVS);
 }
 
-PhotonMaps Backend::readPhotonMaps() {
+PhotonMaps Renderer::readPhotonMaps() {
     PhotonMaps maps;
     for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
         const GridParams& grid = params_.grids[m];
         std::uint32_t stored = std::min(stats_.stored[m], grid.photonCapacity);
         maps.stored[m].resize(stored);
         if (stored > 0) {
-            readBuffer(BINDING_SORTED_PHOTONS, std::uint64_t(grid.photonOffset) * sizeof(MapPhoton),
+            devices_.front()->readBuffer(BINDING_SORTED_PHOTONS, std::uint64_t(grid.photonOffset) * sizeof(MapPhoton),
                        std::uint64_t(stored) * sizeof(MapPhoton), maps.stored[m].data());
         }
         maps.photons[m].reserve(stored);
@@ -292,7 +394,7 @@ PhotonMaps Backend::readPhotonMaps() {
             maps.photons[m].push_back(decodeMapPhoton(p, grid));
         }
         maps.cellStart[m].resize(std::size_t(grid.cellCount) + 1);
-        readBuffer(BINDING_CELL_START, std::uint64_t(grid.cellOffset) * sizeof(std::uint32_t),
+        devices_.front()->readBuffer(BINDING_CELL_START, std::uint64_t(grid.cellOffset) * sizeof(std::uint32_t),
                    maps.cellStart[m].size() * sizeof(std::uint32_t), maps.cellStart[m].data());
     }
     return maps;

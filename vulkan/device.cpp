@@ -1,6 +1,6 @@
 // The Vulkan backend's buffers, its frame submission and its readbacks. The frame's commands
 // are in record_frame.cpp.
-#include "backend.h"
+#include "device.h"
 
 #include <algorithm>
 
@@ -11,7 +11,7 @@
 
 namespace photon::vk {
 
-VulkanBackend::VulkanBackend(std::shared_ptr<Context> context)
+VulkanDevice::VulkanDevice(std::shared_ptr<Context> context)
     : context_(std::move(context)), transfers_(*context_), pipelines_(*context_) {
     VkDevice device = context_->device;
     CommandBuffer commands = createCommandBuffer(device, context_->queueFamily);
@@ -27,7 +27,7 @@ VulkanBackend::VulkanBackend(std::shared_ptr<Context> context)
     context_->checkValidation("creating the Vulkan backend");
 }
 
-VulkanBackend::~VulkanBackend() {
+VulkanDevice::~VulkanDevice() {
     VkDevice device = context_->device;
     vkDeviceWaitIdle(device);
     vkDestroyQueryPool(device, frame_.timestamps, nullptr);
@@ -35,7 +35,7 @@ VulkanBackend::~VulkanBackend() {
     vkDestroyCommandPool(device, frame_.pool, nullptr);
 }
 
-void VulkanBackend::ensureBuffer(std::uint32_t binding, VkDeviceSize bytes) {
+void VulkanDevice::ensureBuffer(std::uint32_t binding, VkDeviceSize bytes) {
     Buffer& buffer = buffers_[binding];
     if (buffer.handle() != VK_NULL_HANDLE && buffer.size() == bytes) {
         return;
@@ -47,18 +47,18 @@ void VulkanBackend::ensureBuffer(std::uint32_t binding, VkDeviceSize bytes) {
     cellCountsDirty_ = cellCountsDirty_ || binding == BINDING_CELL_COUNTS;
 }
 
-MemoryLimits VulkanBackend::memoryLimits() { return deviceMemoryLimits(*context_); }
+MemoryLimits VulkanDevice::memoryLimits() { return deviceMemoryLimits(*context_); }
 
 // The counters buffer also holds the grid build's indirect-dispatch arguments, and cellStart the
 // upper levels of the scan.
-void VulkanBackend::adjustPlan(BufferPlan& plan, const PhotonBudget& budget) {
+void VulkanDevice::adjustPlan(BufferPlan& plan, const PhotonBudget& budget) {
     plan.elements[BINDING_COUNTERS] = COUNTER_WORDS;
     plan.elements[BINDING_CELL_START] = planScan(budget, pipelines_.scanGroupSize).cellStartEntries;
     plan.scratchBytes = 0;
 }
 
 // Scene arrays to their bindings; an empty array still gets a buffer of one zeroed element.
-void VulkanBackend::uploadScene(const Scene& scene, const BufferPlan& plan) {
+void VulkanDevice::uploadScene(const Scene& scene, const BufferPlan& plan) {
     forEachSceneBuffer(scene, plan, [&](std::uint32_t binding, const void* data, std::uint64_t bytes) {
         ensureBuffer(binding, bytes);
         transfers_.upload(buffers_[binding], data, bytes);
@@ -68,7 +68,7 @@ void VulkanBackend::uploadScene(const Scene& scene, const BufferPlan& plan) {
 
 // Every frame buffer, as the plan sizes it. Buffers whose size is unchanged are kept, so a grown
 // photon map keeps the accumulated image.
-void VulkanBackend::allocate(const BufferPlan& plan, const PhotonBudget& budget, std::uint32_t, std::uint32_t) {
+void VulkanDevice::allocate(const BufferPlan& plan, const PhotonBudget& budget, std::uint32_t, std::uint32_t) {
     scan_ = planScan(budget, pipelines_.scanGroupSize);
     ensureBuffer(BINDING_PARAMS, plan.bytes(BINDING_PARAMS));
     for (const BufferInfo& info : kBuffers) {
@@ -79,34 +79,49 @@ void VulkanBackend::allocate(const BufferPlan& plan, const PhotonBudget& budget,
     context_->checkValidation("allocating the frame buffers");
 }
 
-void VulkanBackend::beginStages(const FrameParams& params) {
-    VkCommandBuffer cmd = frame_.cmd;
-    VK_CHECK(vkResetCommandBuffer(cmd, 0));
-    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
-    recordFrameStart(cmd, params);
+void VulkanDevice::beginStages(const FrameParams& params, bool resume) {
+    frame_.submitted = false;
+    frame_.recording = external_ != VK_NULL_HANDLE ? external_ : frame_.cmd;
+    if (external_ == VK_NULL_HANDLE) {
+        VK_CHECK(vkResetCommandBuffer(frame_.cmd, 0));
+        VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+        begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+        VK_CHECK(vkBeginCommandBuffer(frame_.cmd, &begin));
+    }
+    recordFrameStart(frame_.recording, params, resume);
 }
 
-void VulkanBackend::runStage(std::uint32_t stage, const FrameParams& params) { recordStage(frame_.cmd, stage, params); }
+void VulkanDevice::runStage(std::uint32_t stage, const FrameParams& params) { recordStage(frame_.recording, stage, params); }
 
-void VulkanBackend::skipStage(std::uint32_t stage) { timestamp(frame_.cmd, stage + 1); }
+void VulkanDevice::skipStage(std::uint32_t stage) { timestamp(frame_.recording, stage + 1); }
 
-FrameResult VulkanBackend::endStages() {
+// The caller's command buffer is the caller's to submit (recordInto()).
+void VulkanDevice::submitStages() {
+    if (external_ != VK_NULL_HANDLE) {
+        external_ = VK_NULL_HANDLE;
+        return;
+    }
     VkCommandBuffer cmd = frame_.cmd;
     recordStatsReadback(cmd);
     VK_CHECK(vkEndCommandBuffer(cmd));
-
     VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
     submit.commandBufferCount = 1;
     submit.pCommandBuffers = &cmd;
     VK_CHECK(vkQueueSubmit(context_->queue, 1, &submit, frame_.done));
+    frame_.submitted = true;
+}
+
+FrameResult VulkanDevice::endStages() {
+    if (!frame_.submitted) {
+        submitStages();
+    }
     VK_CHECK(vkWaitForFences(context_->device, 1, &frame_.done, VK_TRUE, UINT64_MAX));
     VK_CHECK(vkResetFences(context_->device, 1, &frame_.done));
+    frame_.submitted = false;
     return frameResult();
 }
 
-void VulkanBackend::recordStatsReadback(VkCommandBuffer cmd) {
+void VulkanDevice::recordStatsReadback(VkCommandBuffer cmd) {
     // The counters are final before they are copied out for the host (after the last stage, so
     // the copy delays nothing).
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
@@ -118,7 +133,7 @@ void VulkanBackend::recordStatsReadback(VkCommandBuffer cmd) {
                   VK_ACCESS_HOST_READ_BIT);
 }
 
-FrameResult VulkanBackend::frameResult() {
+FrameResult VulkanDevice::frameResult() {
     FrameResult stats;
     const auto* counters = static_cast<const std::uint32_t*>(frame_.counters.mapped());
     std::copy(counters, counters + COUNTER_COUNT, stats.counters);
@@ -137,9 +152,14 @@ FrameResult VulkanBackend::frameResult() {
     return stats;
 }
 
-void VulkanBackend::readBuffer(std::uint32_t binding, std::uint64_t offset, std::uint64_t bytes, void* data) {
+void VulkanDevice::readBuffer(std::uint32_t binding, std::uint64_t offset, std::uint64_t bytes, void* data) {
     transfers_.download(buffers_[binding], offset, data, bytes);
     context_->checkValidation("reading a buffer back");
+}
+
+void VulkanDevice::writeBuffer(std::uint32_t binding, std::uint64_t offset, std::uint64_t bytes, const void* data) {
+    transfers_.upload(buffers_[binding], data, bytes, offset);
+    context_->checkValidation("writing a buffer");
 }
 
 }  // namespace photon::vk

@@ -1,10 +1,14 @@
-// The one interface every program talks to. A backend (cpu/, cuda/, vulkan/) only allocates
-// buffers and schedules the stages; what a frame computes is decided here and in shared/, and
-// what it needs (core/frame/buffers.h), its statistics and the readbacks of its results are worked out
-// here once for all backends.
+// The one interface every program talks to. A Renderer owns what a render is (scene, settings,
+// camera, photon budget, estimator policy, footprints, statistics, the photon maps' growth) and
+// runs the one stage list of shared/stages.h over its Devices (core/frame/device.h: CPU, CUDA,
+// Vulkan), which only allocate, upload, run a stage and read back. What a frame computes is
+// decided here and in shared/; what it needs (core/frame/buffers.h), its statistics and the
+// readbacks of its results are worked out here once for all devices.
 //
-// A frame runs the stages of shared/stages.h in their order (runFrame() here), each named alike
-// in every backend.
+// With several devices, a frame's photon paths are split over them by index range; after the
+// photon pass a Collective (core/frame/collective.h) gathers every device's photons into the
+// first device's maps, which runs the rest of the frame. The image is the same, bit for bit with
+// --deterministic, as one device's.
 #pragma once
 
 #include <algorithm>
@@ -14,6 +18,8 @@
 #include <vector>
 
 #include "core/frame/buffers.h"
+#include "core/frame/collective.h"
+#include "core/frame/device.h"
 #include "core/frame/estimator_policy.h"
 #include "core/frame/footprints.h"
 #include "core/frame/frame_setup.h"
@@ -24,26 +30,6 @@
 #include "shared/stages.h"
 
 namespace photon {
-
-// Milliseconds of each stage of one frame (device time on GPUs), by STAGE_*.
-struct StageTimes {
-    double ms[STAGE_COUNT] = {};
-    double& operator[](std::uint32_t stage) { return ms[stage]; }
-    double operator[](std::uint32_t stage) const { return ms[stage]; }
-    double total() const {
-        double sum = 0.0;
-        for (double t : ms) {
-            sum += t;
-        }
-        return sum;
-    }
-};
-
-// What a backend reports of a frame it ran: the stage times and the counters buffer.
-struct FrameResult {
-    StageTimes ms;
-    std::uint32_t counters[COUNTER_COUNT] = {};
-};
 
 // The photon maps as reports name them, by map id (shared/constants.h's rows).
 #define PH_MAP_NAME(NAME, id, name, radiusFlag, autoFootprints, fallbackShare, sppmPhotons, sppmMin, sppmMax) name,
@@ -58,6 +44,7 @@ struct FrameStats {
     std::uint32_t capacity[MAP_COUNT] = {};  // room in each map; photons beyond it were dropped
     std::uint32_t environmentPaths = 0;      // photon paths the environment emitted
     std::uint32_t environmentHits = 0;       // ... whose first ray met the scene
+    Exchange exchange;                       // what the devices exchanged (several devices)
 
     std::uint64_t emittedPaths() const { return sum(emitted); }
     std::uint64_t storedPhotons() const { return sum(stored); }
@@ -99,18 +86,18 @@ struct GridStats {
 
 GridStats gridStats(const std::vector<std::uint32_t>& cellStart);
 
-struct BackendOptions {
-    std::string device;       // Vulkan: index or part of the name; CUDA: index
-    bool validation = false;  // Vulkan: enable the validation layer; any message is an error
-    bool parity = false;      // CUDA: kernels without FMA contraction, bit-exact with the CPU backend
-};
-
-class Backend {
+class Renderer {
 public:
-    virtual ~Backend() = default;
+    // One or more devices (at least one); the first runs everything after the photon pass.
+    explicit Renderer(std::vector<std::unique_ptr<Device>> devices,
+                      std::unique_ptr<Collective> collective = createHostCollective());
+    ~Renderer();
 
-    virtual std::string name() const = 0;        // "cpu", "cuda", "vulkan"
-    virtual std::string deviceName() const = 0;  // the processor or GPU it runs on
+    // The devices' backends, "cpu" or "cpu,cpu", and what they run on.
+    std::string name() const;
+    std::string deviceName() const;
+    std::size_t deviceCount() const { return devices_.size(); }
+    Device& device(std::size_t index = 0) { return *devices_.at(index); }
 
     // Changing any of these restarts accumulation; uploads and allocations happen in prepare().
     void setScene(Scene scene);  // moved in: a large scene is not copied again
@@ -121,22 +108,25 @@ public:
     // setCamera(). Several moves before a frame reproject from the last frame's camera.
     void moveCamera(const CameraDesc& camera);
     void resetAccumulation();
-    // This renderer's share of each frame's photon paths (multi-GPU rendering; default: all).
+    // This renderer's share of each frame's photon paths (several processes; default: all). Its
+    // devices split the share again.
     void setPathSplit(const PathSplit& split);
 
-    // Uploads the scene and allocates for the settings if anything changed. Checks the machine's
+    // Uploads the scene and allocates for the settings if anything changed. Checks every device's
     // limits (memory, buffer sizes) first and throws InputError, before any work, if the request
     // cannot fit.
     void prepare();
     void renderFrame();
 
-    // A frame that the caller records and submits itself (the windowed viewer, through
-    // vk::VulkanBackend::recordFrame): beginFrame() prepares and returns its parameters;
-    // endFrame() takes its stats once it has run, grows the photon maps as renderFrame() does and
-    // counts the frame. It returns false, without counting, for a first frame that lost photons:
-    // the next frame repeats it with room for them (only if mayRepeat). renderFrame() is exactly
-    // beginFrame(), the stages (runFrame()), endFrame(). Change nothing between the two calls.
+    // A frame that the caller submits itself (the windowed viewer, whose one Vulkan device records
+    // into the viewer's command buffer: vk::VulkanDevice::recordInto): beginFrame() prepares and
+    // returns its parameters; recordFrame() runs the stages as renderFrame() does, without waiting
+    // for them; endFrame() takes its results once it has run, grows the photon maps as
+    // renderFrame() does and counts the frame. It returns false, without counting, for a first
+    // frame that lost photons: the next frame repeats it with room for them (only if mayRepeat).
+    // renderFrame() is exactly beginFrame(), the stages, endFrame(). Change nothing in between.
     const FrameParams& beginFrame();
+    void recordFrame();
     bool endFrame(const FrameResult& result, bool mayRepeat = true);
 
     // The image of the frames rendered since the last reset (linear radiance): denoised when the
@@ -164,39 +154,21 @@ public:
     std::vector<PixelAov> readAovs();
     Image readFrame();
 
-    // What this backend may allocate now (what it holds already counts as free).
-    virtual MemoryLimits memoryLimits() = 0;
-
-    // Whether the buffers live in host memory (the CPU backend): then the memory check already
-    // counts the image's host copies (adjustPlan), else they are checked against host memory apart.
-    virtual bool buffersInHostMemory() const { return false; }
-
-    // Whether its stages run on the host's cores (the CPU backend, Vulkan on a software device
-    // such as lavapipe): the default photon count follows it (choosePhotons).
-    virtual bool runsOnCpu() const { return false; }
-
-protected:
-    // Entries a backend adds for its own scheduling (Vulkan: the levels of its scan in cellStart).
-    virtual void adjustPlan(BufferPlan& plan, const PhotonBudget& budget) { (void)plan, (void)budget; }
-    // The scene's arrays (sceneArray()) into their buffers, sized as the plan says.
-    virtual void uploadScene(const Scene& scene, const BufferPlan& plan) = 0;
-    // Every buffer that is not the scene's, sized as the plan says; contents need not be kept.
-    virtual void allocate(const BufferPlan& plan, const PhotonBudget& budget, std::uint32_t width,
-                          std::uint32_t height) = 0;
-    // One frame: beginStages(), runStage() for each stage of shared/stages.h in order, endStages()
-    // (which waits for the frame and returns its times and counters).
-    virtual void beginStages(const FrameParams& params) = 0;
-    virtual void runStage(std::uint32_t stage, const FrameParams& params) = 0;
-    // A stage this frame leaves out, in its place in the order (timers that run from stage to
-    // stage record it as taking no time).
-    virtual void skipStage(std::uint32_t stage) { (void)stage; }
-    virtual FrameResult endStages() = 0;
-    // `bytes` bytes of the buffer at `binding`, from byte `offset`, after every earlier frame.
-    virtual void readBuffer(std::uint32_t binding, std::uint64_t offset, std::uint64_t bytes, void* data) = 0;
+    // What the first device may allocate now, and where its buffers live (Device's).
+    MemoryLimits memoryLimits() { return devices_.front()->memoryLimits(); }
+    bool buffersInHostMemory() const { return devices_.front()->buffersInHostMemory(); }
+    // Whether every device runs on the host's cores: the default photon count follows it.
+    bool runsOnCpu() const;
 
 private:
-    // The stages in order; with denoiseOnly, only the denoise stage, over the last frame's image.
+    // The stages in order on the first device; with denoiseOnly, only the denoise stage, over
+    // the last frame's image. Several devices: the photon pass on each, the exchange, the rest on
+    // the first (runSharedFrame()).
     FrameResult runFrame(const FrameParams& params, bool denoiseOnly = false);
+    FrameResult runSharedFrame(const FrameParams& params);
+    // The stages of `params` that this part of a frame runs, the others skipped in their places.
+    void runStages(Device& device, const FrameParams& params, bool denoiseOnly, std::uint32_t first,
+                   std::uint32_t last);
     // Runs the denoise stage over the image, unless it ran for this image already.
     void denoiseImage();
     Image readImage(std::uint32_t binding);
@@ -205,10 +177,12 @@ private:
     std::vector<T> readPerPixel(std::uint32_t binding);
     // The footprints and first radii of the camera, if it, the scene or the settings changed.
     void measureRadii();
-    // Grows a photon map that came within 80% of its capacity (GPU backends drop photons beyond
+    // Grows a photon map that came within 80% of its capacity (GPU devices drop photons beyond
     // it). Returns true if photons were dropped this frame.
     bool growPhotonMaps();
 
+    std::vector<std::unique_ptr<Device>> devices_;
+    std::unique_ptr<Collective> collective_;
     Scene scene_;
     RenderSettings settings_;
     CameraDesc camera_;
@@ -219,6 +193,7 @@ private:
     bool footprintsDirty_ = true;
     FrameParams params_{};
     FrameStats stats_;
+    Exchange exchange_;           // of the frame in flight
     std::uint32_t frameIndex_ = 0;   // frames since the scene or settings were set: seeds the RNG
     std::uint32_t accumulated_ = 0;  // frames in the running mean
     bool sceneDirty_ = true;
@@ -226,7 +201,8 @@ private:
     std::uint32_t allocatedWidth_ = 0;
     std::uint32_t allocatedHeight_ = 0;
     PhotonBudget allocatedBudget_;
-    BufferPlan plan_;
+    BufferPlan plan_;                     // the first device's
+    std::vector<BufferPlan> devicePlans_;  // each device's, as allocated
     std::uint32_t grownCapacity_[MAP_COUNT] = {};  // capacities raised by growPhotonMaps()
     bool warnedDropped_ = false;
     bool denoiseEachFrame_ = false;

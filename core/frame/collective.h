@@ -1,0 +1,42 @@
+// What the devices of one frame must share, exchanged between two of its stages. The frame's
+// photon paths are split over the devices by index range (PathSplit); each traces its own, and
+// the photons then meet in one device's maps, which builds the grid and runs the eye pass.
+//
+// Why photons, and not each pixel's sums after a gather on every device: the photon maps' grid
+// puts each cell's photons in id order (--deterministic), so the gathered maps are the maps one
+// device would have built and the image is the same bit for bit, where per-device sums added
+// afterwards round differently; and the bytes are alike (32 bytes a stored photon, about 1.1
+// stored per path in the Cornell box, against an SppmPixel and a radiance a pixel for every
+// device: docs/performance.md measures both).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "core/frame/device.h"
+
+namespace photon {
+
+struct Exchange {
+    std::uint64_t bytes = 0;  // moved between devices this frame
+    double ms = 0.0;          // host time the exchange took
+};
+
+class Collective {
+public:
+    virtual ~Collective() = default;
+
+    // After the photon pass, which device d ran over its own paths (params[d]; results[d] holds
+    // its counters): every device's photons join the first device's maps after its own, up to
+    // each map's capacity, and the first device's counters become the frame's: each map's
+    // stored photons and the environment's paths summed over the devices, in results[0] and
+    // written to the first device for the stages that follow (Device::beginStages(resume)).
+    virtual Exchange gatherPhotons(const std::vector<Device*>& devices, const std::vector<FrameParams>& params,
+                                   std::vector<FrameResult>& results) = 0;
+};
+
+// The devices of one process, through host memory.
+std::unique_ptr<Collective> createHostCollective();
+
+}  // namespace photon
