@@ -73,8 +73,12 @@ Options readOptions(const Scene& scene, const py::kwargs& kwargs) {
         if (spec == nullptr || name != spec->key) {
             throw InputError(name + ": no such setting (the keys of a scene file's \"render\" block, as photon-render --help lists them)");
         }
-        std::string text = py::isinstance<py::bool_>(value) ? (value.cast<bool>() ? "true" : "false")
-                                                            : std::string(py::str(value));
+        std::string text = py::str(value);
+        if (py::isinstance<py::bool_>(value)) {  // True/False: a flag's true/false, an off|on choice's on/off
+            bool onOff = spec->kind == SettingKind::Choice && ("|" + spec->choices + "|").find("|on|") != std::string::npos &&
+                         ("|" + spec->choices + "|").find("|off|") != std::string::npos;
+            text = value.cast<bool>() ? (onOff ? "on" : "true") : (onOff ? "off" : "false");
+        }
         setSetting(o.settings, *spec, text, name);
         framesGiven |= name == "frames";
     }

@@ -154,6 +154,13 @@ def test_aovs_are_views_that_outlive_the_renderer():
     assert np.isfinite(albedo).all() and albedo.max() > 0 and albedo.max() <= 1
 
 
+def test_an_on_off_setting_takes_a_bool():
+    assert np.array_equal(photon.render(CORNELL, **dict(SMALL, denoise=False)),
+                          photon.render(CORNELL, **dict(SMALL, denoise="off")))
+    assert np.array_equal(photon.render(CORNELL, **dict(SMALL, denoise=True)),
+                          photon.render(CORNELL, **dict(SMALL, denoise="on")))
+
+
 def test_write_image_writes_what_photon_render_reads(tmp_path):
     image = photon.render(CORNELL, **SMALL)
     photon.write_image(str(tmp_path / "a.pfm"), image)  # the strided view, read in place
