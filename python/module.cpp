@@ -2,9 +2,11 @@
 // JSON text or a dict in the scene format; settings as keyword arguments named as in scene files'
 // "render" block (the CLI's long options with '_' for '-'), parsed and checked by the settings
 // table itself (core/settings/setting_specs.h), so no setting is spelled here. Images come back
-// as NumPy arrays (height, width, 3) of float32 linear radiance. Bad input raises ValueError and a
-// runtime failure RuntimeError, with the messages the CLI prints; rendering releases the GIL, and
-// Ctrl-C raises KeyboardInterrupt after the frame in flight.
+// as NumPy arrays (height, width, 3) of float32 linear radiance: strided views of the readback's
+// own pixels, the one copy from the device. Bad input raises ValueError and a runtime failure
+// RuntimeError, with the messages the CLI prints; rendering releases the GIL, a progress callback
+// sees each frame and may stop the render, and Ctrl-C raises KeyboardInterrupt after the frame in
+// flight.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
