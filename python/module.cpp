@@ -2,10 +2,11 @@
 // JSON text or a dict in the scene format; settings as keyword arguments named as in scene files'
 // "render" block (the CLI's long options with '_' for '-'), parsed and checked by the settings
 // table itself (core/settings/setting_specs.h), so no setting is spelled here. Images come back
-// as NumPy arrays (height, width, 3) of float32 linear radiance. Bad input raises ValueError and a
-// runtime failure RuntimeError, with the messages the CLI prints; rendering releases the GIL, and
-// Ctrl-C raises KeyboardInterrupt after the frame in flight.
-#include <pybind11/functional.h>
+// as NumPy arrays (height, width, 3) of float32 linear radiance: strided views of the readback's
+// own pixels, the one copy from the device. Bad input raises ValueError and a runtime failure
+// RuntimeError, with the messages the CLI prints; rendering releases the GIL, a progress callback
+// sees each frame and may stop the render, and Ctrl-C raises KeyboardInterrupt after the frame in
+// flight.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -74,8 +75,12 @@ Options readOptions(const Scene& scene, const py::kwargs& kwargs) {
         if (spec == nullptr || name != spec->key) {
             throw InputError(name + ": no such setting (the keys of a scene file's \"render\" block, as photon-render --help lists them)");
         }
-        std::string text = py::isinstance<py::bool_>(value) ? (value.cast<bool>() ? "true" : "false")
-                                                            : std::string(py::str(value));
+        std::string text = py::str(value);
+        if (py::isinstance<py::bool_>(value)) {  // True/False: a flag's true/false, an off|on choice's on/off
+            bool onOff = spec->kind == SettingKind::Choice && ("|" + spec->choices + "|").find("|on|") != std::string::npos &&
+                         ("|" + spec->choices + "|").find("|off|") != std::string::npos;
+            text = value.cast<bool>() ? (onOff ? "on" : "true") : (onOff ? "off" : "false");
+        }
         setSetting(o.settings, *spec, text, name);
         framesGiven |= name == "frames";
     }
@@ -87,21 +92,26 @@ Options readOptions(const Scene& scene, const py::kwargs& kwargs) {
     return o;
 }
 
-py::array_t<float> toArray(const Image& image) {
-    py::array_t<float> out({py::ssize_t(image.height), py::ssize_t(image.width), py::ssize_t(3)});
-    auto view = out.mutable_unchecked<3>();
-    for (std::uint32_t y = 0; y < image.height; ++y) {
-        for (std::uint32_t x = 0; x < image.width; ++x) {
-            const glm::vec4& p = image.at(x, y);
-            view(y, x, 0) = p.x;
-            view(y, x, 1) = p.y;
-            view(y, x, 2) = p.z;
-        }
-    }
-    return out;
+// The array over an image's own pixels, no copy: the image moves into a heap object that a capsule
+// owns (the array's base), and the array views its vec4 storage as (height, width, 3) with strides
+// (width · 16, 16, 4) bytes, the fourth float of each pixel skipped. `owner` keeps `image` alive:
+// an image of several that one capsule holds (aovs()).
+static_assert(sizeof(glm::vec4) == 4 * sizeof(float), "the array's strides assume tightly packed vec4 pixels");
+
+py::array_t<float> viewOf(Image& image, const py::capsule& owner) {
+    py::ssize_t w = image.width, h = image.height, pixel = sizeof(glm::vec4);
+    return py::array_t<float>({h, w, py::ssize_t(3)}, {w * pixel, pixel, py::ssize_t(sizeof(float))},
+                              reinterpret_cast<float*>(image.pixels.data()), owner);
 }
 
-Image fromArray(const py::array_t<float, py::array::c_style | py::array::forcecast>& array) {
+py::array_t<float> toArray(Image&& image) {
+    auto held = std::make_unique<Image>(std::move(image));
+    py::capsule owner(held.get(), [](void* p) { delete static_cast<Image*>(p); });
+    return viewOf(*held.release(), owner);
+}
+
+// Any strides (a view such as render()'s arrays is read in place), any float dtype (converted).
+Image fromArray(const py::array_t<float, py::array::forcecast>& array) {
     if (array.ndim() != 3 || array.shape(2) < 3 || array.shape(0) <= 0 || array.shape(1) <= 0) {
         throw InputError("image: expected an array of shape (height, width, 3)");
     }
@@ -121,23 +131,38 @@ bool interrupted() {
     return PyErr_CheckSignals() != 0;
 }
 
-py::array_t<float> renderScene(const py::object& sceneArg, const py::kwargs& kwargs) {
+// render(): `progress(frames done, seconds since the start)` after each frame, with the GIL; its
+// returning False (the object itself, not a falsy value) cancels, and the image of the frames so far
+// comes back. Ctrl-C raises KeyboardInterrupt after the frame in flight; an exception the callback
+// raises ends the render and comes through.
+py::array_t<float> renderScene(const py::object& sceneArg, const py::object& progress, const py::kwargs& kwargs) {
     Scene scene = loadScene(sceneArg);
     Options o = readOptions(scene, kwargs);
     if (o.job.seconds == 0.0 && !o.job.framesCap) {
         o.job.seconds = kDefaultRenderSeconds;  // as photon-render: no length given anywhere
     }
+    bool stopAsked = false;  // progress returned False
+    bool signalled = false;  // Ctrl-C: a KeyboardInterrupt is set
     RenderObserver observer;
-    observer.cancel = interrupted;
+    if (!progress.is_none()) {
+        observer.frame = [&](std::uint32_t frames, double seconds) {
+            py::gil_scoped_acquire gil;
+            stopAsked = progress(frames, seconds).ptr() == Py_False;
+        };
+    }
+    observer.cancel = [&] {
+        signalled = interrupted();
+        return signalled || stopAsked;
+    };
     RenderResult result;
     {
         py::gil_scoped_release release;
         result = render(std::move(scene), o.settings, o.job, observer);
     }
-    if (result.cancelled) {
+    if (signalled) {
         throw py::error_already_set();  // the KeyboardInterrupt PyErr_CheckSignals set
     }
-    return toArray(result.image);
+    return toArray(std::move(result.image));
 }
 
 // Progressive rendering: a backend that keeps its frames between calls.
@@ -153,20 +178,22 @@ public:
         backend_->prepare();
     }
 
-    // Renders `frames` frames; `progress(frames done, of)` after each. Ctrl-C stops after the
-    // frame in flight, raising KeyboardInterrupt; the renderer stays usable.
-    std::uint32_t step(std::uint32_t frames, const std::function<void(std::uint32_t, std::uint32_t)>& progress) {
+    // Renders `frames` frames; `progress(frames done, of)` after each, whose returning False ends
+    // the step there (as render()'s). Ctrl-C stops after the frame in flight, raising
+    // KeyboardInterrupt; the renderer stays usable.
+    std::uint32_t step(std::uint32_t frames, const py::object& progress) {
         for (std::uint32_t f = 0; f < frames; ++f) {
             {
                 py::gil_scoped_release release;
                 backend_->renderFrame();
             }
             frames_ += 1;
-            if (progress) {
-                progress(f + 1, frames);
-            }
+            bool stop = !progress.is_none() && progress(f + 1, frames).ptr() == Py_False;
             if (PyErr_CheckSignals() != 0) {
                 throw py::error_already_set();
+            }
+            if (stop) {
+                break;
             }
         }
         return frames_;
@@ -178,19 +205,22 @@ public:
             py::gil_scoped_release release;
             image = backend_->image();
         }
-        return toArray(image);
+        return toArray(std::move(image));
     }
 
     py::dict aovs() {
         if (!backend_->settings().aov) {
             throw InputError("aovs: the renderer keeps no auxiliary images (Renderer(..., aov=True))");
         }
-        AovImages a = aovImages(backend_->readAovs(), backend_->settings().width, backend_->settings().height, frames_);
+        auto a = std::make_unique<AovImages>(
+            aovImages(backend_->readAovs(), backend_->settings().width, backend_->settings().height, frames_));
+        py::capsule owner(a.get(), [](void* p) { delete static_cast<AovImages*>(p); });  // the four arrays' one base
+        AovImages* held = a.release();
         py::dict out;
-        out["albedo"] = toArray(a.albedo);
-        out["normal"] = toArray(a.normal);
-        out["depth"] = toArray(a.depth);
-        out["variance"] = toArray(a.variance);
+        out["albedo"] = viewOf(held->albedo, owner);
+        out["normal"] = viewOf(held->normal, owner);
+        out["depth"] = viewOf(held->depth, owner);
+        out["variance"] = viewOf(held->variance, owner);
         return out;
     }
 
@@ -228,14 +258,16 @@ PYBIND11_MODULE(photon, m) {
             PyErr_SetString(PyExc_RuntimeError, printable(e.what()).c_str());
         }
     });
-    m.def("render", &renderScene, py::arg("scene"),
+    m.def("render", &renderScene, py::arg("scene"), py::kw_only(), py::arg("progress") = py::none(),
           "Renders a scene (a path, JSON text or a dict) and returns its image, (height, width, 3) float32 "
-          "linear radiance. Keyword arguments: backend, device, time (seconds), and any render setting by its "
-          "scene-file key (photons, frames, estimator, seed, deterministic, ...).");
+          "linear radiance, a strided view of the readback. Keyword arguments: progress (called as "
+          "progress(frames_done, seconds) after each frame; returning False stops the render, which returns "
+          "the frames so far), backend, device, time (seconds), and any render setting by its scene-file key "
+          "(photons, frames, estimator, seed, deterministic, ...).");
     m.def("devices", &compiledBackends, "The backends compiled into this module (cpu, cuda, vulkan).");
     m.def(
         "write_image",
-        [](const std::string& path, const py::array_t<float, py::array::c_style | py::array::forcecast>& array,
+        [](const std::string& path, const py::array_t<float, py::array::forcecast>& array,
            float exposure) {
             Image image = fromArray(array);
             if (!allFinite(image)) {
@@ -245,10 +277,14 @@ PYBIND11_MODULE(photon, m) {
         },
         py::arg("path"), py::arg("image"), py::arg("exposure") = 0.0f,
         "Writes an image as photon-render does, by extension: .png (tone-mapped sRGB), .exr or .pfm (linear).");
+    m.def(
+        "read_image", [](const std::string& path) { return toArray(readImage(path)); }, py::arg("path"),
+        "Reads a .pfm or .exr file (linear radiance, as photon-render writes them) into (height, width, 3) float32.");
     py::class_<ProgressiveRenderer>(m, "Renderer", "Progressive rendering: frames accumulate across step() calls.")
         .def(py::init<const py::object&, const py::kwargs&>(), py::arg("scene"))
-        .def("step", &ProgressiveRenderer::step, py::arg("frames") = 1, py::arg("progress") = nullptr,
-             "Renders frames; returns the frames accumulated so far.")
+        .def("step", &ProgressiveRenderer::step, py::arg("frames") = 1, py::arg("progress") = py::none(),
+             "Renders frames, calling progress(frames_done, frames) after each (returning False stops); "
+             "returns the frames accumulated so far.")
         .def("image", &ProgressiveRenderer::image, "The accumulated image (denoised where the settings say).")
         .def("aovs", &ProgressiveRenderer::aovs, "Albedo, normal, depth and variance images (with aov=True).")
         .def("stats", &ProgressiveRenderer::stats, "photon-render's --stats as a dict: photons and grids of the last frame, costs.");

@@ -29,6 +29,9 @@ def read_pfm(path):
 def test_render_equals_photon_render_bit_for_bit(tmp_path):
     image = photon.render(CORNELL, **SMALL)
     assert image.shape == (36, 48, 3) and image.dtype == np.float32
+    # A view of the readback's own vec4 pixels (no copy after it): strided, its base the owner.
+    assert image.strides == (48 * 16, 16, 4) and not image.flags.c_contiguous and not image.flags.owndata
+    assert image.base is not None
     out = tmp_path / "cli.pfm"
     args = [os.environ["PHOTON_RENDER"], CORNELL, "-q", "-o", str(out)]
     for key, value in SMALL.items():
@@ -107,10 +110,66 @@ def test_progressive_steps_continue_where_they_stopped():
     assert set(aovs.aovs()) == {"albedo", "normal", "depth", "variance"}
 
 
+def test_render_calls_progress_after_each_frame_and_false_cancels():
+    seen = []
+    image = photon.render(CORNELL, progress=lambda done, seconds: seen.append((done, seconds)), **SMALL)
+    assert [done for done, _ in seen] == [1, 2]
+    assert 0 < seen[0][1] <= seen[1][1], "seconds since the start, growing"
+    # Returning None, 0 or [] goes on: only False itself cancels.
+    falsy = iter([None, 0, []])
+    assert np.array_equal(photon.render(CORNELL, progress=lambda d, s: next(falsy), **dict(SMALL, frames=3)),
+                          photon.render(CORNELL, **dict(SMALL, frames=3)))
+    # False after the second frame: the image of 2 frames, as the progressive renderer's after step(2).
+    settings = dict(SMALL, frames=1000)
+    calls = []
+    cancelled = photon.render(CORNELL, progress=lambda done, s: calls.append(done) or done < 2, **settings)
+    assert calls == [1, 2]
+    two = photon.Renderer(CORNELL, **settings)
+    assert two.step(2) == 2
+    assert np.array_equal(cancelled, two.image()), "cancelled after 2 frames = the mean of 2 frames, bit for bit"
+    assert not np.array_equal(cancelled, photon.render(CORNELL, **dict(SMALL, frames=3)))
+
+
+def test_an_exception_in_progress_ends_the_render_and_comes_through():
+    def progress(done, seconds):
+        raise ZeroDivisionError("from the callback")
+
+    with pytest.raises(ZeroDivisionError, match="from the callback"):
+        photon.render(CORNELL, progress=progress, **SMALL)
+
+
+def test_step_progress_false_ends_the_step():
+    renderer = photon.Renderer(CORNELL, **dict(SMALL, frames=1000))
+    assert renderer.step(5, progress=lambda done, of: done < 2) == 2
+    assert renderer.step(1, progress=lambda done, of: False) == 3
+
+
+def test_aovs_are_views_that_outlive_the_renderer():
+    renderer = photon.Renderer(CORNELL, **dict(SMALL, frames=1000, aov=True))
+    renderer.step(1)
+    aovs = renderer.aovs()
+    del renderer
+    albedo = aovs["albedo"]
+    assert albedo.shape == (36, 48, 3) and albedo.strides == (48 * 16, 16, 4)
+    assert np.isfinite(albedo).all() and albedo.max() > 0 and albedo.max() <= 1
+
+
+def test_an_on_off_setting_takes_a_bool():
+    assert np.array_equal(photon.render(CORNELL, **dict(SMALL, denoise=False)),
+                          photon.render(CORNELL, **dict(SMALL, denoise="off")))
+    assert np.array_equal(photon.render(CORNELL, **dict(SMALL, denoise=True)),
+                          photon.render(CORNELL, **dict(SMALL, denoise="on")))
+
+
 def test_write_image_writes_what_photon_render_reads(tmp_path):
     image = photon.render(CORNELL, **SMALL)
-    photon.write_image(str(tmp_path / "a.pfm"), image)
+    photon.write_image(str(tmp_path / "a.pfm"), image)  # the strided view, read in place
     assert np.array_equal(read_pfm(tmp_path / "a.pfm"), image)
+    assert np.array_equal(photon.read_image(str(tmp_path / "a.pfm")), image)
+    photon.write_image(str(tmp_path / "a.exr"), np.ascontiguousarray(image[::-1]))  # any layout
+    assert np.array_equal(photon.read_image(str(tmp_path / "a.exr")), image[::-1])
+    with pytest.raises(ValueError, match="a.bmp"):
+        photon.read_image(str(tmp_path / "a.bmp"))
     photon.write_image(str(tmp_path / "a.png"), image)
     assert (tmp_path / "a.png").stat().st_size > 0
     with pytest.raises(ValueError, match="unknown image format"):
