@@ -112,7 +112,7 @@ TEST(Devices, BadListsAreRefusedByOption) {
     };
     EXPECT_NE(message("cpu,", "").find("--backend 'cpu,': an empty entry"), std::string::npos);
     EXPECT_NE(message("cpu,gpu", "").find("unknown backend 'gpu'"), std::string::npos);
-    EXPECT_NE(message("cpu,cpu", "0").find("--device 0: the CPU has no devices to choose from"), std::string::npos);
+    EXPECT_NE(message("cpu,cpu", "0").find("--device 0: the CPU backend has no devices to choose from"), std::string::npos);
     EXPECT_NE(message("cuda,cuda,cuda", "0,1").find("--device '0,1': 2 entries for 3 devices"), std::string::npos);
     EXPECT_NE(message("cpu,cpu,cpu,cpu,cpu,cpu,cpu,cpu,cpu,cpu,cpu,cpu,cpu,cpu,cpu,cpu,cpu", "").find("at most 16"),
               std::string::npos);

@@ -26,7 +26,7 @@ namespace {
 
 std::unique_ptr<Device> cpuDevice(const DeviceOptions& options) {
     if (!options.device.empty()) {
-        throw InputError("--device " + options.device + ": the CPU has no devices to choose from");
+        throw InputError("--device " + options.device + ": the CPU backend has no devices to choose from");
     }
     return createCpuDevice();
 }
