@@ -91,7 +91,13 @@ sed 's/"type": "glass", "ior": 1.6, "abbe": 12/"type": "glass", "ior": 1.6, "abb
 expect 2 "abbe.json: /materials/glass/abbe: must be in [1, 1e+06] (got -12)" "$tmp/abbe.json" "${small[@]}" -o "$tmp/x.png"
 expect 2 "unknown image format" "${small[@]}" -o "$tmp/x.bmp"
 expect 2 "" "${small[@]}" --no-such-option
-expect 2 "opencl not in" --backend opencl
+expect 2 "'opencl' is not a backend" --backend opencl
+expect 2 "'' is not a backend" --backend cpu,
+expect 2 "--device '0,1': 2 entries for 3 devices" --backend cpu,cpu,cpu --device 0,1 -o "$tmp/x.png"
+# Several devices split the frame's photon paths: the image of one, bit for bit.
+"$render" "${small[@]}" --deterministic -o "$tmp/one.pfm" > /dev/null
+"$render" "${small[@]:2}" --backend cpu,cpu --deterministic -o "$tmp/two.pfm" > /dev/null
+cmp "$tmp/one.pfm" "$tmp/two.pfm" || { echo "FAIL: --backend cpu,cpu renders another image than cpu"; failures=$((failures + 1)); }
 
 # Bad model files: exit 2 with the file, the OBJ line or the glTF pointer, and the reason.
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n' > "$tmp/bad.obj"
