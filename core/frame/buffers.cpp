@@ -53,6 +53,15 @@ BufferPlan planBuffers(const Scene& scene, const PhotonBudget& budget, std::uint
     return plan;
 }
 
+void keepPhotonPassBuffers(BufferPlan& plan) {
+    for (const BufferInfo& info : kBuffers) {
+        bool traced = info.size == BUFFER_PER_SCENE || info.binding == BINDING_PHOTONS || info.binding == BINDING_COUNTERS;
+        if (!traced) {
+            plan.elements[info.binding] = 1;
+        }
+    }
+}
+
 void resizeChangedBuffers(const BufferPlan& plan, const std::function<bool(std::uint32_t, std::uint64_t)>& holds,
                           const std::function<void(std::uint32_t, std::uint64_t)>& resize) {
     std::vector<std::uint32_t> changed;

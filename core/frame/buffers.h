@@ -24,6 +24,11 @@ struct BufferPlan {
 
 BufferPlan planBuffers(const Scene& scene, const PhotonBudget& budget, std::uint32_t width, std::uint32_t height);
 
+// The plan of a device that only runs the photon pass (one of several but the first:
+// core/frame/collective.h): the scene, the parameters, the photons and the counters as planned,
+// every other buffer one element.
+void keepPhotonPassBuffers(BufferPlan& plan);
+
 // Resizes the buffers (not the scene's) whose size the plan changes: `holds(binding, bytes)` says
 // whether the backend's buffer at `binding` already fits `bytes`; `resize(binding, bytes)` frees
 // it (bytes 0) or allocates it zeroed. Buffers whose size is unchanged are kept (a grown photon

@@ -124,6 +124,9 @@ void Renderer::prepare() {
     std::vector<BufferPlan> plans;
     for (const auto& device : devices_) {
         BufferPlan plan = planBuffers(scene_, budget, settings_.width, settings_.height);
+        if (device != devices_.front()) {
+            keepPhotonPassBuffers(plan);
+        }
         device->adjustPlan(plan, budget);
         checkMemory(plan, device->memoryLimits(), settings_.width, settings_.height);
         plans.push_back(plan);
