@@ -111,8 +111,9 @@ int writeResult(const RenderResult& result, const RenderSettings& settings, cons
         return 128 + interrupted;
     }
     if (!out.quiet) {
-        std::fprintf(stderr, "%s on %s: %ux%u, %u frame%s in %.2f s (%.1f ms/frame), photons stored %s -> %s\n",
-                     result.backend.c_str(), result.device.c_str(), settings.width, settings.height, frames,
+        std::string processes = result.processes > 1 ? " in each of " + std::to_string(result.processes) + " processes" : "";
+        std::fprintf(stderr, "%s on %s%s: %ux%u, %u frame%s in %.2f s (%.1f ms/frame), photons stored %s -> %s\n",
+                     result.backend.c_str(), result.device.c_str(), processes.c_str(), settings.width, settings.height, frames,
                      frames == 1 ? "" : "s", wall, 1000.0 * wall / frames, result.last.storedList().c_str(), output.c_str());
     }
     return 0;
@@ -176,7 +177,8 @@ int run(int argc, char** argv) {
 
     // Named by the file: a scene file's "name" may be empty, or say nothing of where it came from.
     std::string source = app.count("scene") == 0 ? "<embedded cornell.json>" : scenePath;
-    Outputs out{output, statsPath, source, quiet};
+    // Under mpirun every process renders its share; the first prints and writes.
+    Outputs out{output, statsPath, source, quiet || launchedRank() != 0};
     std::vector<std::string> warnings = scene.warnings;
     for (const std::string& warning : warnings) {
         warn(out, warning);
@@ -186,7 +188,7 @@ int run(int argc, char** argv) {
     job.device = backendOptions;
     job.seconds = timed ? seconds : 0.0;
     job.framesCap = framesGiven;
-    ProgressBar progress(timed ? 0 : settings.frames, timed ? seconds : 0.0, !quiet);
+    ProgressBar progress(timed ? 0 : settings.frames, timed ? seconds : 0.0, !out.quiet);
     nlohmann::json stats;
     RenderObserver observer;
     observer.frame = [&](std::uint32_t frames, double elapsed) { progress.update(frames, elapsed); };
@@ -198,6 +200,9 @@ int run(int argc, char** argv) {
         }
     };
     RenderResult result = render(std::move(scene), settings, job, observer);
+    if (!result.leader) {
+        return interruptSignal() != 0 ? 128 + interruptSignal() : 0;
+    }
     return writeResult(result, settings, out, warnings, std::move(stats));
 }
 

@@ -19,5 +19,5 @@ apt-get install -y -q --no-install-recommends \
   libglfw3-dev libimgui-dev xvfb xauth x11-apps imagemagick \
   libtinyobjloader-dev libtinygltf-dev libmeshoptimizer-dev libdraco-dev gltfpack assimp-testmodels libbenchmark-dev \
   clang libclang-rt-14-dev zlib1g-dev libisal-dev libopenexr-dev python3-matplotlib \
-  python3-dev pybind11-dev python3-numpy python3-pytest
+  python3-dev pybind11-dev python3-numpy python3-pytest libopenmpi-dev openmpi-bin
 apt-get install -y -q --no-install-recommends -t bookworm-backports mesa-vulkan-drivers

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 
 namespace photon {
 namespace {
@@ -52,5 +53,24 @@ private:
 }  // namespace
 
 std::unique_ptr<Collective> createHostCollective() { return std::make_unique<HostCollective>(); }
+
+bool launchedByMpi() {
+    for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE"}) {
+        const char* value = std::getenv(name);
+        if (value != nullptr && std::atoi(value) > 1) {
+            return true;
+        }
+    }
+    return false;
+}
+
+std::uint32_t launchedRank() {
+    for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK"}) {
+        if (const char* value = std::getenv(name)) {
+            return static_cast<std::uint32_t>(std::strtoul(value, nullptr, 10));
+        }
+    }
+    return 0;
+}
 
 }  // namespace photon

@@ -1,6 +1,10 @@
 // What the devices of one frame must share, exchanged between two of its stages. The frame's
-// photon paths are split over the devices by index range (PathSplit); each traces its own, and
-// the photons then meet in one device's maps, which builds the grid and runs the eye pass.
+// photon paths are split over the processes and, within each, over its devices by index range
+// (PathSplit); each device traces its own, and the photons then meet in one device's maps (the
+// first device of the first process, the leader), which builds the grid and runs the eye pass.
+// Every process then receives the leader's counters, so that each renderer grows its maps and
+// chooses its radii as the leader does. The host Collective joins the devices of one process; the
+// MPI one (mpi_collective.h, where MPI is built) joins processes too.
 //
 // Why photons, and not each pixel's sums after a gather on every device: the photon maps' grid
 // puts each cell's photons in id order (--deterministic), so the gathered maps are the maps one
@@ -27,6 +31,12 @@ class Collective {
 public:
     virtual ~Collective() = default;
 
+    // The processes rendering together (1: this one alone) and this one's place among them. The
+    // first leads: it runs the frame after the exchange and holds the image.
+    virtual std::uint32_t processes() const { return 1; }
+    virtual std::uint32_t process() const { return 0; }
+    bool leads() const { return process() == 0; }
+
     // After the photon pass, which device d ran over its own paths (params[d]; results[d] holds
     // its counters): every device's photons join the first device's maps after its own, up to
     // each map's capacity, and the first device's counters become the frame's: each map's
@@ -34,9 +44,20 @@ public:
     // written to the first device for the stages that follow (Device::beginStages(resume)).
     virtual Exchange gatherPhotons(const std::vector<Device*>& devices, const std::vector<FrameParams>& params,
                                    std::vector<FrameResult>& results) = 0;
+
+    // After the leader ran the rest of the frame: its times and counters, in every process.
+    virtual void shareResult(FrameResult& result) { (void)result; }
+
+    // The leader's answer, in every process, to what each asks after a frame (stop here?).
+    virtual bool agree(bool leaderAnswer) { return leaderAnswer; }
 };
 
 // The devices of one process, through host memory.
 std::unique_ptr<Collective> createHostCollective();
+
+// Whether an MPI launcher (mpirun, srun) started this process among others, and its rank there
+// (0 when not launched so): before MPI starts, what a program needs to stay quiet but in rank 0.
+bool launchedByMpi();
+std::uint32_t launchedRank();
 
 }  // namespace photon

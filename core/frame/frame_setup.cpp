@@ -118,14 +118,17 @@ FrameParams makeFrameParams(const Scene& scene, const CameraDesc& camera, const 
         p.sppm[map] = radii.sppm[map];
     }
     p.alpha = settings.alpha;
-    splitPaths(p, budget.totalPaths(), split);
+    p.pathFirst = 0;
+    p.pathCount = static_cast<std::uint32_t>(budget.totalPaths());
+    splitPaths(p, split);
     return p;
 }
 
-void splitPaths(FrameParams& params, std::uint64_t totalPaths, const PathSplit& split) {
-    std::uint64_t first = totalPaths * split.rank / split.ranks;
-    params.pathFirst = static_cast<std::uint32_t>(first);
-    params.pathCount = static_cast<std::uint32_t>(totalPaths * (split.rank + 1) / split.ranks - first);
+void splitPaths(FrameParams& params, const PathSplit& split) {
+    std::uint64_t count = params.pathCount;
+    std::uint64_t first = count * split.rank / split.ranks;
+    params.pathFirst += static_cast<std::uint32_t>(first);
+    params.pathCount = static_cast<std::uint32_t>(count * (split.rank + 1) / split.ranks - first);
 }
 
 }  // namespace photon

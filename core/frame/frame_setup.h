@@ -68,8 +68,8 @@ FrameParams makeFrameParams(const Scene& scene, const CameraDesc& camera, const 
                             const PhotonBudget& budget, std::uint32_t frameIndex, std::uint32_t accumulated,
                             const FrameRadii& radii, const PathSplit& split = {});
 
-// The frame's paths of `split`'s rank: consecutive index ranges, so that a rank r of N split again
-// into n parts gives parts r·n to r·n + n − 1 of N·n.
-void splitPaths(FrameParams& params, std::uint64_t totalPaths, const PathSplit& split);
+// Narrows the parameters' paths (pathFirst, pathCount) to `split`'s rank's consecutive part of
+// them: a process's share of a frame, then each of its devices' share of that.
+void splitPaths(FrameParams& params, const PathSplit& split);
 
 }  // namespace photon

@@ -37,6 +37,7 @@ Renderer::Renderer(std::vector<std::unique_ptr<Device>> devices, std::unique_ptr
     if (devices_.empty() || !collective_) {
         throw std::invalid_argument("a renderer needs a device and a collective");
     }
+    split_ = {collective_->process(), collective_->processes()};
 }
 
 Renderer::~Renderer() = default;
@@ -189,7 +190,7 @@ void Renderer::recordFrame() {
 
 FrameResult Renderer::runFrame(const FrameParams& params, bool denoiseOnly) {
     exchange_ = Exchange{};
-    if (devices_.size() > 1 && !denoiseOnly) {
+    if ((devices_.size() > 1 || collective_->processes() > 1) && !denoiseOnly) {
         return runSharedFrame(params);
     }
     Device& device = *devices_.front();
@@ -206,7 +207,7 @@ FrameResult Renderer::runSharedFrame(const FrameParams& params) {
     std::vector<FrameParams> shares(n, params);
     std::vector<Device*> devices;
     for (std::uint32_t d = 0; d < n; ++d) {
-        splitPaths(shares[d], budget_.totalPaths(), {split_.rank * n + d, split_.ranks * n});
+        splitPaths(shares[d], {d, n});
         devices.push_back(devices_[d].get());
         devices[d]->beginStages(shares[d]);
         runStages(*devices[d], shares[d], false, STAGE_TRACE_PHOTONS, STAGE_TRACE_PHOTONS + 1);
@@ -218,11 +219,15 @@ FrameResult Renderer::runSharedFrame(const FrameParams& params) {
     }
     exchange_ = collective_->gatherPhotons(devices, shares, results);
 
-    Device& root = *devices.front();
-    root.beginStages(shares.front(), true);
-    runStages(root, shares.front(), false, STAGE_TRACE_PHOTONS + 1, STAGE_COUNT);
-    root.submitStages();
-    FrameResult frame = root.endStages();
+    FrameResult frame = results.front();
+    if (collective_->leads()) {
+        Device& root = *devices.front();
+        root.beginStages(shares.front(), true);
+        runStages(root, shares.front(), false, STAGE_TRACE_PHOTONS + 1, STAGE_COUNT);
+        root.submitStages();
+        frame = root.endStages();
+    }
+    collective_->shareResult(frame);
     // The photon pass took as long as its slowest device where the devices run side by side, and
     // their sum where they take turns on the host's cores.
     double trace = 0.0;
@@ -230,7 +235,7 @@ FrameResult Renderer::runSharedFrame(const FrameParams& params) {
         double ms = results[d].ms[STAGE_TRACE_PHOTONS];
         trace = devices[d]->runsOnCpu() ? trace + ms : std::max(trace, ms);
     }
-    frame.ms[STAGE_TRACE_PHOTONS] = trace;
+    frame.ms[STAGE_TRACE_PHOTONS] = trace;  // this process's photon pass; the rest is the leader's
     return frame;
 }
 
@@ -334,7 +339,16 @@ bool Renderer::growPhotonMaps() {
     return dropped;
 }
 
+void Renderer::requireLeader(const char* what) const {
+    if (!collective_->leads()) {
+        throw std::logic_error(std::string(what) + ": the image is the first process's (process " +
+                               std::to_string(collective_->process()) + " of " +
+                               std::to_string(collective_->processes()) + " asked)");
+    }
+}
+
 Image Renderer::image() {
+    requireLeader("image");
     if (accumulated_ == 0) {
         return Image(settings_.width, settings_.height);
     }
@@ -346,6 +360,7 @@ Image Renderer::image() {
 }
 
 Image Renderer::rawImage() {
+    requireLeader("rawImage");
     if (accumulated_ == 0) {
         return Image(settings_.width, settings_.height);
     }
@@ -355,6 +370,7 @@ Image Renderer::rawImage() {
 Image Renderer::readFrame() { return readImage(BINDING_FRAME); }
 
 Image Renderer::readImage(std::uint32_t binding) {
+    requireLeader("readImage");
     Image image(allocatedWidth_, allocatedHeight_);
     if (!image.pixels.empty()) {
         devices_.front()->readBuffer(binding, 0, image.pixels.size() * sizeof(glm::vec4), image.pixels.data());
@@ -364,6 +380,7 @@ Image Renderer::readImage(std::uint32_t binding) {
 
 template <typename T>
 std::vector<T> Renderer::readPerPixel(std::uint32_t binding) {
+    requireLeader("readPerPixel");
     std::vector<T> elements(std::size_t(allocatedWidth_) * allocatedHeight_);
     if (!elements.empty()) {
         devices_.front()->readBuffer(binding, 0, elements.size() * sizeof(T), elements.data());
@@ -383,6 +400,7 @@ std::vector<PixelAov> Renderer::readAovs() {
 }
 
 PhotonMaps Renderer::readPhotonMaps() {
+    requireLeader("readPhotonMaps");
     PhotonMaps maps;
     for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
         const GridParams& grid = params_.grids[m];

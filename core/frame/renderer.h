@@ -98,6 +98,13 @@ public:
     std::string deviceName() const;
     std::size_t deviceCount() const { return devices_.size(); }
     Device& device(std::size_t index = 0) { return *devices_.at(index); }
+    // The processes rendering together (MPI) and whether this one holds the image (the first):
+    // the others' image(), rawImage() and readbacks throw std::logic_error.
+    std::uint32_t processes() const { return collective_->processes(); }
+    bool leads() const { return collective_->leads(); }
+    // The leader's answer in every process (whether to stop after this frame): several processes
+    // render the same frames.
+    bool agree(bool leaderAnswer) { return collective_->agree(leaderAnswer); }
 
     // Changing any of these restarts accumulation; uploads and allocations happen in prepare().
     void setScene(Scene scene);  // moved in: a large scene is not copied again
@@ -108,8 +115,8 @@ public:
     // setCamera(). Several moves before a frame reproject from the last frame's camera.
     void moveCamera(const CameraDesc& camera);
     void resetAccumulation();
-    // This renderer's share of each frame's photon paths (several processes; default: all). Its
-    // devices split the share again.
+    // This renderer's share of each frame's photon paths (by default all, or this process's share
+    // where several render together). Its devices split the share again.
     void setPathSplit(const PathSplit& split);
 
     // Uploads the scene and allocates for the settings if anything changed. Checks every device's
@@ -163,7 +170,7 @@ public:
 private:
     // The stages in order on the first device; with denoiseOnly, only the denoise stage, over
     // the last frame's image. Several devices: the photon pass on each, the exchange, the rest on
-    // the first (runSharedFrame()).
+    // the first (runSharedFrame()), the same with several processes.
     FrameResult runFrame(const FrameParams& params, bool denoiseOnly = false);
     FrameResult runSharedFrame(const FrameParams& params);
     // The stages of `params` that this part of a frame runs, the others skipped in their places.
@@ -172,6 +179,8 @@ private:
     // Runs the denoise stage over the image, unless it ran for this image already.
     void denoiseImage();
     Image readImage(std::uint32_t binding);
+    // Throws std::logic_error in a process that does not hold the image.
+    void requireLeader(const char* what) const;
     // A per-pixel buffer's elements, as the last frame left them.
     template <typename T>
     std::vector<T> readPerPixel(std::uint32_t binding);

@@ -8,6 +8,9 @@
 #ifdef PHOTON_HAVE_VULKAN
 #include "vulkan/vulkan_device.h"
 #endif
+#ifdef PHOTON_HAVE_MPI
+#include "core/render/mpi_collective.h"
+#endif
 
 namespace photon {
 
@@ -107,7 +110,18 @@ std::unique_ptr<Renderer> createRenderer(const std::string& kinds, const DeviceO
         one.device = choices.size() == 1 ? choices.front() : choices[i];
         devices.push_back(createDevice(names[i], one));
     }
-    return std::make_unique<Renderer>(std::move(devices));
+    return std::make_unique<Renderer>(std::move(devices), createCollective());
+}
+
+std::unique_ptr<Collective> createCollective() {
+    if (!launchedByMpi()) {
+        return createHostCollective();
+    }
+#ifdef PHOTON_HAVE_MPI
+    return createMpiCollective();
+#else
+    throw RuntimeError("started by an MPI launcher with other processes, but this build has no MPI (libopenmpi-dev)");
+#endif
 }
 
 }  // namespace photon

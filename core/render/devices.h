@@ -17,9 +17,14 @@ namespace photon {
 std::unique_ptr<Device> createDevice(const std::string& kind, const DeviceOptions& options = {});
 
 // A renderer over one device per entry of a comma-separated list of backends ("cuda", "cpu,cpu",
-// "cuda,cuda"): a frame's photon paths are split over them. options.device is one device choice
-// for all, or a comma-separated list with one entry each ("0,1").
+// "cuda,cuda"): a frame's photon paths are split over them (and over the processes, under MPI:
+// createCollective()). options.device is one device choice for all, or a comma-separated list
+// with one entry each ("0,1").
 std::unique_ptr<Renderer> createRenderer(const std::string& kinds, const DeviceOptions& options = {});
+
+// How the renderers of several processes render together: over MPI where an MPI launcher
+// started this process among others (and MPI is built: else RuntimeError), else alone.
+std::unique_ptr<Collective> createCollective();
 
 // The backends compiled into this build.
 std::vector<std::string> compiledBackends();

@@ -29,13 +29,20 @@ RenderResult render(Scene scene, RenderSettings settings, const RenderJob& job, 
         if (observer.frame) {
             observer.frame(f + 1, seconds);
         }
-        if (observer.cancel && observer.cancel()) {
-            result.cancelled = true;
+        // Processes rendering together stop after the same frame: the leader's.
+        bool cancelled = observer.cancel && observer.cancel();
+        bool stop = renderer->agree(cancelled || (timed && seconds >= job.seconds));
+        if (stop) {
+            result.cancelled = renderer->agree(cancelled);
             break;
         }
-        if (timed && seconds >= job.seconds) {
-            break;
-        }
+    }
+    result.leader = renderer->leads();
+    result.processes = renderer->processes();
+    if (!result.leader) {
+        result.last = renderer->lastFrameStats();
+        result.seconds = elapsed();
+        return result;  // the image is the leader's
     }
     if (observer.finished) {
         observer.finished(*renderer);

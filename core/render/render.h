@@ -45,6 +45,9 @@ struct RenderResult {
     FrameStats last;                // the last frame's counts and times
     double seconds = 0.0;           // wall time from the device's creation to the image
     bool cancelled = false;
+    std::uint32_t processes = 1;    // rendering together (MPI)
+    bool leader = true;             // false in the processes of an MPI render but the first: no
+                                    // images (and `finished` is not called)
     std::string backend;            // the backend's and the device's names
     std::string device;
 };

@@ -35,9 +35,11 @@ nlohmann::json renderStatsJson(Renderer& renderer) {
                             {"photons_hitting_the_scene", last.environmentHits},
                             {"hit_fraction", last.environmentPaths > 0 ? double(last.environmentHits) / last.environmentPaths : 0.0}};
     }
-    if (renderer.deviceCount() > 1) {
-        // The photons the other devices sent to the first one's maps (core/frame/collective.h).
+    if (renderer.deviceCount() > 1 || renderer.processes() > 1) {
+        // The photons the other devices (and processes) sent to the first one's maps in the last
+        // frame (core/frame/collective.h), as the leader received them.
         j["exchange"] = {{"devices", renderer.deviceCount()},
+                         {"processes", renderer.processes()},
                          {"bytes", last.exchange.bytes},
                          {"ms", last.exchange.ms}};
     }

@@ -1,0 +1,149 @@
+#include "core/render/mpi_collective.h"
+
+#include <mpi.h>
+
+#include <algorithm>
+#include <chrono>
+#include <climits>
+#include <string>
+#include <vector>
+
+#include "core/system/error.h"
+
+namespace photon {
+namespace {
+
+void check(int code, const char* what) {
+    if (code != MPI_SUCCESS) {
+        char text[MPI_MAX_ERROR_STRING] = {};
+        int length = 0;
+        MPI_Error_string(code, text, &length);
+        throw RuntimeError(std::string("MPI: ") + what + ": " + text);
+    }
+}
+
+// MPI for the process's lifetime: initialized once, finalized at exit.
+struct MpiSession {
+    MpiSession() {
+        int initialized = 0;
+        MPI_Initialized(&initialized);
+        if (!initialized) {
+            int provided = 0;
+            check(MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided), "init");
+            owned = true;
+        }
+    }
+    ~MpiSession() {
+        int finalized = 0;
+        MPI_Finalized(&finalized);
+        if (owned && !finalized) {
+            MPI_Finalize();
+        }
+    }
+    bool owned = false;
+};
+
+class MpiCollective final : public Collective {
+public:
+    MpiCollective() : local_(createHostCollective()) {
+        static MpiSession session;
+        int rank = 0;
+        int size = 1;
+        check(MPI_Comm_rank(MPI_COMM_WORLD, &rank), "rank");
+        check(MPI_Comm_size(MPI_COMM_WORLD, &size), "size");
+        rank_ = static_cast<std::uint32_t>(rank);
+        size_ = static_cast<std::uint32_t>(size);
+    }
+
+    std::uint32_t processes() const override { return size_; }
+    std::uint32_t process() const override { return rank_; }
+
+    // This process's devices into its first, then every process's photons into the leader's maps
+    // in process order, and the counters summed there.
+    Exchange gatherPhotons(const std::vector<Device*>& devices, const std::vector<FrameParams>& params,
+                           std::vector<FrameResult>& results) override {
+        Exchange exchange = local_->gatherPhotons(devices, params, results);
+        auto start = std::chrono::steady_clock::now();
+        Device& root = *devices.front();
+        std::uint32_t* counters = results.front().counters;
+        for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
+            const GridParams& grid = params.front().grids[m];
+            std::uint32_t held = std::min(counters[COUNTER_STORED + m], grid.photonCapacity);
+            std::uint64_t bytes = leads() ? 0 : std::uint64_t(held) * sizeof(Photon);
+            if (bytes > INT_MAX) {
+                throw RuntimeError("MPI: " + std::to_string(held) + " photons of one map are more than one message carries");
+            }
+            std::vector<Photon> mine(leads() ? 0 : held);
+            if (!mine.empty()) {
+                root.readBuffer(BINDING_PHOTONS, std::uint64_t(grid.photonOffset) * sizeof(Photon), bytes, mine.data());
+            }
+            int count = static_cast<int>(bytes);
+            std::vector<int> counts(size_);
+            check(MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD), "photon counts");
+            std::vector<int> offsets(size_, 0);
+            std::uint64_t received = 0;
+            for (std::uint32_t r = 0; r < size_; ++r) {
+                offsets[r] = static_cast<int>(std::min<std::uint64_t>(received, INT_MAX));
+                received += leads() ? std::uint64_t(counts[r]) : 0u;
+            }
+            if (received > INT_MAX) {
+                throw RuntimeError("MPI: the processes' photons of one map are more than one message carries");
+            }
+            std::vector<Photon> theirs(received / sizeof(Photon));
+            check(MPI_Gatherv(mine.data(), count, MPI_BYTE, theirs.data(), counts.data(), offsets.data(), MPI_BYTE, 0,
+                              MPI_COMM_WORLD),
+                  "photons");
+            if (leads()) {
+                auto moved = static_cast<std::uint32_t>(std::min<std::uint64_t>(theirs.size(), grid.photonCapacity - held));
+                if (moved > 0) {
+                    root.writeBuffer(BINDING_PHOTONS, std::uint64_t(grid.photonOffset + held) * sizeof(Photon),
+                                     std::uint64_t(moved) * sizeof(Photon), theirs.data());
+                }
+            }
+            exchange.bytes += leads() ? received : bytes;
+        }
+        // Each map's stored photons (those beyond the capacity too: the map grows) and the
+        // environment's paths, summed.
+        constexpr std::uint32_t kSummed = MAP_COUNT + 2;
+        std::uint32_t mine[kSummed];
+        for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
+            mine[m] = counters[COUNTER_STORED + m];
+        }
+        mine[MAP_COUNT] = counters[COUNTER_ENVIRONMENT_PATHS];
+        mine[MAP_COUNT + 1] = counters[COUNTER_ENVIRONMENT_HITS];
+        std::uint32_t sum[kSummed] = {};
+        check(MPI_Reduce(mine, sum, kSummed, MPI_UINT32_T, MPI_SUM, 0, MPI_COMM_WORLD), "counters");
+        if (leads()) {
+            for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
+                counters[COUNTER_STORED + m] = sum[m];
+            }
+            counters[COUNTER_ENVIRONMENT_PATHS] = sum[MAP_COUNT];
+            counters[COUNTER_ENVIRONMENT_HITS] = sum[MAP_COUNT + 1];
+            root.writeBuffer(BINDING_COUNTERS, 0, sizeof(results.front().counters), counters);
+        }
+        exchange.ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        return exchange;
+    }
+
+    void shareResult(FrameResult& result) override {
+        check(MPI_Bcast(result.counters, COUNTER_COUNT, MPI_UINT32_T, 0, MPI_COMM_WORLD), "frame counters");
+        check(MPI_Bcast(result.ms.ms, STAGE_COUNT, MPI_DOUBLE, 0, MPI_COMM_WORLD), "frame times");
+    }
+
+    bool agree(bool leaderAnswer) override {
+        int answer = leaderAnswer ? 1 : 0;
+        check(MPI_Bcast(&answer, 1, MPI_INT, 0, MPI_COMM_WORLD), "agreement");
+        return answer != 0;
+    }
+
+private:
+    std::unique_ptr<Collective> local_;
+    std::uint32_t rank_ = 0;
+    std::uint32_t size_ = 1;
+};
+
+}  // namespace
+
+std::unique_ptr<Collective> createMpiCollective() { return std::make_unique<MpiCollective>(); }
+
+}  // namespace photon
