@@ -6,6 +6,7 @@
 #include <chrono>
 #include <climits>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "core/system/error.h"
@@ -19,6 +20,19 @@ void check(int code, const char* what) {
         int length = 0;
         MPI_Error_string(code, text, &length);
         throw RuntimeError(std::string("MPI: ") + what + ": " + text);
+    }
+}
+
+// Waits for a request without spinning: the processes that wait for the leader's eye pass (the
+// frame's longest part) would otherwise take a core from it where they share a host.
+void waitIdly(MPI_Request& request, const char* what) {
+    for (;;) {
+        int done = 0;
+        check(MPI_Test(&request, &done, MPI_STATUS_IGNORE), what);
+        if (done) {
+            return;
+        }
+        std::this_thread::sleep_for(std::chrono::microseconds(100));
     }
 }
 
@@ -126,8 +140,11 @@ public:
     }
 
     void shareResult(FrameResult& result) override {
-        check(MPI_Bcast(result.counters, COUNTER_COUNT, MPI_UINT32_T, 0, MPI_COMM_WORLD), "frame counters");
-        check(MPI_Bcast(result.ms.ms, STAGE_COUNT, MPI_DOUBLE, 0, MPI_COMM_WORLD), "frame times");
+        MPI_Request requests[2];
+        check(MPI_Ibcast(result.counters, COUNTER_COUNT, MPI_UINT32_T, 0, MPI_COMM_WORLD, &requests[0]), "frame counters");
+        check(MPI_Ibcast(result.ms.ms, STAGE_COUNT, MPI_DOUBLE, 0, MPI_COMM_WORLD, &requests[1]), "frame times");
+        waitIdly(requests[0], "frame counters");
+        waitIdly(requests[1], "frame times");
     }
 
     bool agree(bool leaderAnswer) override {
