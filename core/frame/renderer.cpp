@@ -66,15 +66,16 @@ void Renderer::setScene(Scene scene) {
     scene_ = std::move(scene);
     camera_ = scene_.camera;
     sceneDirty_ = true;
-    footprintsDirty_ = true;
-    allocationDirty_ = true;
-    frameIndex_ = 0;
-    accumulated_ = 0;
+    restart();
 }
 
 void Renderer::setSettings(const RenderSettings& settings) {
     settings_ = settings;
     std::fill(std::begin(grownCapacity_), std::end(grownCapacity_), 0u);
+    restart();
+}
+
+void Renderer::restart() {
     allocationDirty_ = true;
     footprintsDirty_ = true;
     frameIndex_ = 0;

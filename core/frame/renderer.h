@@ -176,6 +176,8 @@ private:
     // The stages of `params` that this part of a frame runs, the others skipped in their places.
     void runStages(Device& device, const FrameParams& params, bool denoiseOnly, std::uint32_t first,
                    std::uint32_t last);
+    // A new scene or settings: plan and measure again, and start the frames and their seeds over.
+    void restart();
     // Runs the denoise stage over the image, unless it ran for this image already.
     void denoiseImage();
     Image readImage(std::uint32_t binding);
