@@ -35,14 +35,8 @@ namespace {
 
 // A whole number in [0, limit], or InputError naming the option.
 std::uint32_t parseCount(const std::string& text, std::uint32_t limit, const std::string& what) {
-    std::size_t used = 0;
     unsigned long v = 0;
-    try {
-        v = std::stoul(text, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (used == 0 || used != text.size() || text[0] == '-' || v > limit) {
+    if (!parseWholeNumber(text, v) || text[0] == '-' || v > limit) {
         throw InputError(what + ": '" + text + "' is not a whole number in [0, " + std::to_string(limit) + "]");
     }
     return std::uint32_t(v);
