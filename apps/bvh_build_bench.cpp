@@ -74,14 +74,8 @@ nlohmann::json timeBuilds(const std::string& name, const Scene& scene, std::uint
 std::vector<unsigned> parseThreadCounts(const std::string& list) {
     std::vector<unsigned> threadCounts;
     for (const std::string& t : splitList(list)) {
-        std::size_t end = 0;
         unsigned long n = 0;
-        try {
-            n = std::stoul(t, &end);
-        } catch (const std::exception&) {
-            end = 0;
-        }
-        if (end == 0 || end != t.size() || n > 4096) {
+        if (!parseWholeNumber(t, n) || n > 4096) {
             throw InputError("--threads: " + quote(t) + " is not a thread count (0: all)");
         }
         threadCounts.push_back(unsigned(n));

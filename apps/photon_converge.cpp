@@ -35,14 +35,8 @@ namespace {
 
 // A whole number in [0, limit], or InputError naming the option.
 std::uint32_t parseCount(const std::string& text, std::uint32_t limit, const std::string& what) {
-    std::size_t used = 0;
     unsigned long v = 0;
-    try {
-        v = std::stoul(text, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (used == 0 || used != text.size() || text[0] == '-' || v > limit) {
+    if (!parseWholeNumber(text, v) || text[0] == '-' || v > limit) {
         throw InputError(what + ": '" + text + "' is not a whole number in [0, " + std::to_string(limit) + "]");
     }
     return std::uint32_t(v);
@@ -151,6 +145,25 @@ void addOptions(CLI::App& app, ConvergeOptions& o) {
         ->check(CLI::Range(1u, 1000000u));
 }
 
+// --scene, and its settings with the command line's overrides. A --json file's path is checked
+// first, so that a bad one fails before the scene is loaded and rendered.
+Scene loadScene(const ConvergeOptions& o, RenderSettings& settings) {
+    if (!o.jsonPath.empty()) {
+        checkOutputPath(o.jsonPath, "JSON");
+    }
+    Scene scene = loadSceneFile(o.scenePath);
+    settings = scene.render;
+    applyOverrides(settings, o.overrides);
+    return scene;
+}
+
+// Writes the measurements to --json, if given.
+void writeJson(const ConvergeOptions& o, const nlohmann::json& out) {
+    if (!o.jsonPath.empty()) {
+        writeOutputFile(o.jsonPath, out.dump(2) + "\n", "JSON");
+    }
+}
+
 // --camera-path: the error while the camera moves (apps/orbit_error.h).
 void runOrbit(const ConvergeOptions& o) {
     OrbitMeasurement orbit = o.orbit;
@@ -159,12 +172,8 @@ void runOrbit(const ConvergeOptions& o) {
     if (!o.referencePath.empty() || !o.comparePath.empty() || o.scenePath.empty()) {
         throw InputError("--camera-path: give a scene and no --reference or --compare (it renders its own references)");
     }
-    if (!o.jsonPath.empty()) {
-        checkOutputPath(o.jsonPath, "JSON");
-    }
-    Scene scene = loadSceneFile(o.scenePath);
-    RenderSettings s = scene.render;
-    applyOverrides(s, o.overrides);
+    RenderSettings s;
+    Scene scene = loadScene(o, s);
     chooseDefaults(s, true);
     chooseInteractive(s);
     chooseSpectral(s, scene);
@@ -174,9 +183,7 @@ void runOrbit(const ConvergeOptions& o) {
     nlohmann::json out = measureOrbit(make, scene, s, orbit);
     out["scene"] = scene.name;
     out["photons_per_frame"] = s.photons;
-    if (!o.jsonPath.empty()) {
-        writeOutputFile(o.jsonPath, out.dump(2) + "\n", "JSON");
-    }
+    writeJson(o, out);
 }
 
 // An image's error against the reference, and its quality measures.
@@ -264,12 +271,8 @@ int run(int argc, char** argv) {
     if (o.scenePath.empty()) {
         throw InputError("a scene is needed (or --compare IMAGE)");
     }
-    if (!o.jsonPath.empty()) {
-        checkOutputPath(o.jsonPath, "JSON");
-    }
-    Scene scene = loadSceneFile(o.scenePath);
-    RenderSettings base = scene.render;
-    applyOverrides(base, o.overrides);
+    RenderSettings base;
+    Scene scene = loadScene(o, base);
     if (base.width != reference.width || base.height != reference.height) {
         throw InputError("--reference: " + o.referencePath + " is " + std::to_string(reference.width) + "x" +
                          std::to_string(reference.height) + ", the render " + std::to_string(base.width) + "x" +
@@ -291,9 +294,7 @@ int run(int argc, char** argv) {
         backend->setSettings(s);
         out["estimators"][name] = measureCheckpoints(*backend, s, name, o, times, measure);
     }
-    if (!o.jsonPath.empty()) {
-        writeOutputFile(o.jsonPath, out.dump(2) + "\n", "JSON");
-    }
+    writeJson(o, out);
     return 0;
 }
 

@@ -1,6 +1,7 @@
 #include "render_options.h"
 
 #include <sstream>
+#include <stdexcept>
 
 #include "core/loaders/environment_loader.h"
 #include "core/settings/setting_specs.h"
@@ -21,6 +22,16 @@ std::vector<std::string> splitList(const std::string& text) {
         }
     }
     return out;
+}
+
+bool parseWholeNumber(const std::string& text, unsigned long& value) {
+    std::size_t used = 0;
+    try {
+        value = std::stoul(text, &used);
+    } catch (const std::exception&) {
+        return false;
+    }
+    return used != 0 && used == text.size();
 }
 
 void addRenderOptions(CLI::App& app, RenderOptions& o) {

@@ -29,6 +29,11 @@ struct RenderOptions {
 // The items of a comma-separated option ("cuda,vulkan"), empty ones dropped.
 std::vector<std::string> splitList(const std::string& text);
 
+// `text` read as an unsigned number by std::stoul, which must take every character; false if it
+// takes none or not all. (stoul accepts leading white space and wraps a leading '-', so callers
+// that mind check for them.)
+bool parseWholeNumber(const std::string& text, unsigned long& value);
+
 // The settings' options, and --allow-outside-paths.
 void addRenderOptions(CLI::App& app, RenderOptions& options);
 

@@ -9,11 +9,13 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "core/frame/renderer.h"
 #include "core/image/image.h"
+#include "core/loaders/scene_loader.h"
 #include "core/system/error.h"
 #include "test_render.h"
 #include "test_util.h"
@@ -171,6 +173,21 @@ inline void expectImagesClose(const Image& actual, const Image& expected, double
         writeImage(testOutputPath(name + "-difference.png"), differenceImage(actual, expected), 0.0f, Tonemap::Clamp);
     }
     EXPECT_LE(error, tolerance) << name << ": relative RMSE (images in " << testOutputPath("") << ")";
+}
+
+// The spectral cases a GPU backend is compared on: `scene` and the dispersive prism (whose paths
+// keep one wavelength each), each with the radius and the SPPM estimator, spectral on in `base`.
+inline void forSpectralCases(const Scene& scene, const RenderSettings& base,
+                             const std::function<void(const Scene&, const RenderSettings&)>& compare) {
+    Scene prism = loadSceneFile(scenesDir() + "/prism.json");
+    for (const Scene& s : {scene, prism}) {
+        for (Estimator e : {Estimator::Radius, Estimator::Sppm}) {
+            RenderSettings settings = base;
+            settings.spectral = true;
+            settings.estimator = e;
+            compare(s, settings);
+        }
+    }
 }
 
 }  // namespace photon::test

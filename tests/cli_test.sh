@@ -3,11 +3,11 @@
 # messages that name the file and place, and every output format.
 #   tests/cli_test.sh <photon-render> <scenes dir>
 set -uo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 render=$1
 scenes=$2
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-failures=0
 small=(--backend cpu --width 32 --height 24 --photons 5000 --frames 1)
 
 # expect <code> <stderr substring or ""> <args...>
@@ -17,12 +17,18 @@ expect() {
   "$render" "$@" >"$tmp/out" 2>"$tmp/err"
   local got=$?
   if [ "$got" -ne "$code" ]; then
-    echo "FAIL: photon-render $* exited $got, expected $code"; cat "$tmp/err"; failures=$((failures + 1))
+    fail "photon-render $* exited $got, expected $code"; cat "$tmp/err"
   elif [ -n "$message" ] && ! grep -qF -- "$message" "$tmp/err"; then
-    echo "FAIL: photon-render $*: stderr lacks '$message'"; cat "$tmp/err"; failures=$((failures + 1))
+    fail "photon-render $*: stderr lacks '$message'"; cat "$tmp/err"
   else
     echo "ok: exit $got: photon-render $*"
   fi
+}
+
+# mesh_scene <model file> <camera position> <look at> <light position>: a scene file's JSON that
+# shows one model, lit by a point light of power 10 (the positions as "x, y, z").
+mesh_scene() {
+  printf '{"camera": {"position": [%s], "look_at": [%s]}, "materials": {}, "lights": [{"type": "point", "position": [%s], "power": 10}], "objects": [{"type": "mesh", "file": "%s"}]}' "$2" "$3" "$4" "$1"
 }
 
 # Success, every format, the default scene and a file.
@@ -36,38 +42,38 @@ expect 0 "" "$scenes/cornell.json" "${small[@]}" -o "$tmp/jittered.pfm"
 expect 0 "" "$tmp/centred.json" "${small[@]}" -o "$tmp/centred.pfm"
 expect 0 "" "$tmp/centred.json" "${small[@]}" -o "$tmp/off.pfm" --pixel-center --no-pixel-center
 cmp -s "$tmp/jittered.pfm" "$tmp/off.pfm" && ! cmp -s "$tmp/jittered.pfm" "$tmp/centred.pfm" \
-  || { echo "FAIL: --no-pixel-center did not undo the scene file's pixel_center"; failures=$((failures + 1)); }
+  || fail "--no-pixel-center did not undo the scene file's pixel_center"
 expect 0 "" "${small[@]}" -o "$tmp/n.png" --deterministic --no-deterministic
 # The denoiser: on by default, off by --denoise off; an EXR carries the raw image and the AOVs
 # as layers (OpenEXR keeps channel names as text in its header).
 expect 0 "" "${small[@]}" --frames 2 -o "$tmp/den.pfm"
 expect 0 "" "${small[@]}" --frames 2 -o "$tmp/raw.pfm" --denoise off
-! cmp -s "$tmp/den.pfm" "$tmp/raw.pfm" || { echo "FAIL: --denoise off changed nothing"; failures=$((failures + 1)); }
+! cmp -s "$tmp/den.pfm" "$tmp/raw.pfm" || fail "--denoise off changed nothing"
 expect 2 "--denoise" "${small[@]}" -o "$tmp/x.png" --denoise maybe
 expect 0 "" "${small[@]}" --frames 2 -o "$tmp/aov.exr" --aov
 for channel in raw.R albedo.G normal.Z depth.Z variance.Y; do
-  grep -qaF "$channel" "$tmp/aov.exr" || { echo "FAIL: --aov: no channel $channel in the EXR"; failures=$((failures + 1)); }
+  grep -qaF "$channel" "$tmp/aov.exr" || fail "--aov: no channel $channel in the EXR"
 done
 # A device that is not there: the list of devices on the message's one line.
 "$render" "${small[@]}" --backend vulkan --device 9 -o "$tmp/x.png" 2>"$tmp/err" >/dev/null
-! grep -qF 'x0a' "$tmp/err" || { echo "FAIL: --device 9 printed an escaped newline:"; cat "$tmp/err"; failures=$((failures + 1)); }
+! grep -qF 'x0a' "$tmp/err" || { fail "--device 9 printed an escaped newline:"; cat "$tmp/err"; }
 expect 2 "--deterministic" "${small[@]}" -o "$tmp/n.png" --no-deterministic=maybe
 for f in a.png a.exr a.pfm b.png stats.json; do
-  [ -s "$tmp/$f" ] || { echo "FAIL: $f was not written"; failures=$((failures + 1)); }
+  [ -s "$tmp/$f" ] || fail "$f was not written"
 done
 python3 -c "import json,sys; j=json.load(open(sys.argv[1])); assert j['frames']==2 and 'gather' in j['stages'] and j['photons']['global']['stored']>0" "$tmp/stats.json" \
-  || { echo "FAIL: stats JSON"; failures=$((failures + 1)); }
+  || fail "stats JSON"
 
 # No length anywhere: about kDefaultRenderSeconds of frames, sppm; --time with --frames: the frames cap it.
 expect 0 "" --backend cpu --width 32 --height 24 --photons 5000 -o "$tmp/d.png" --stats "$tmp/d.json"
 python3 -c "import json,sys; j=json.load(open(sys.argv[1])); assert j['estimator']=='sppm' and j['frames']>1 and 1.9<=j['wall_seconds']<10, j" "$tmp/d.json" \
-  || { echo "FAIL: the default render is not 2 s of sppm"; failures=$((failures + 1)); }
+  || fail "the default render is not 2 s of sppm"
 expect 0 "" --backend cpu --width 32 --height 24 --photons 5000 -o "$tmp/t.png" --stats "$tmp/t.json" --time 0.3 --estimator radius
 python3 -c "import json,sys; j=json.load(open(sys.argv[1])); assert j['estimator']=='radius' and j['frames']>1 and j['wall_seconds']<5, j" "$tmp/t.json" \
-  || { echo "FAIL: --time with an estimator"; failures=$((failures + 1)); }
+  || fail "--time with an estimator"
 expect 0 "" --backend cpu --width 32 --height 24 --photons 5000 -o "$tmp/t.png" --stats "$tmp/t.json" --time 100 --frames 3
 python3 -c "import json,sys; j=json.load(open(sys.argv[1])); assert j['frames']==3 and j['estimator']=='sppm', j" "$tmp/t.json" \
-  || { echo "FAIL: --frames caps --time"; failures=$((failures + 1)); }
+  || fail "--frames caps --time"
 expect 0 "" "$scenes/bunny.json" --backend cpu --width 32 --height 24 --photons 5000 --frames 1 -o "$tmp/bunny.png"
 expect 0 "" "$scenes/textured.glb" --backend cpu --width 32 --height 24 --photons 5000 --frames 1 -o "$tmp/textured.png"
 expect 0 "" "$scenes/prism.json" "${small[@]}" -o "$tmp/prism.png"
@@ -97,7 +103,7 @@ expect 2 "--device '0,1': 2 entries for 3 devices" --backend cpu,cpu,cpu --devic
 # Several devices split the frame's photon paths: the image of one, bit for bit.
 "$render" "${small[@]}" --deterministic -o "$tmp/one.pfm" > /dev/null
 "$render" "${small[@]:2}" --backend cpu,cpu --deterministic -o "$tmp/two.pfm" > /dev/null
-cmp "$tmp/one.pfm" "$tmp/two.pfm" || { echo "FAIL: --backend cpu,cpu renders another image than cpu"; failures=$((failures + 1)); }
+cmp "$tmp/one.pfm" "$tmp/two.pfm" || fail "--backend cpu,cpu renders another image than cpu"
 
 # Bad model files: exit 2 with the file, the OBJ line or the glTF pointer, and the reason.
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n' > "$tmp/bad.obj"
@@ -117,14 +123,14 @@ printf '{"asset": {"version": "1.0"}, "meshes": {"box": {"primitives": []}}}' > 
 expect 2 "old.gltf: a glTF 1.0 file; Photon reads glTF 2.0" "$tmp/old.gltf" "${small[@]}" -o "$tmp/x.png"
 printf '{"camera": {"position": [0, 1, 4], "look_at": [0, 1, 0]}, "materials": {}, "lights": [{"type": "point", "position": [0, 3, 0], "power": 10}], "objects": []}' > "$tmp/nothing.json"
 expect 2 "nothing.json: /objects: the scene has no geometry" "$tmp/nothing.json" "${small[@]}" -o "$tmp/x.png"
-grep -q -- "--radius" "$tmp/err" && { echo "FAIL: a scene without geometry blames --radius"; failures=$((failures + 1)); }
+grep -q -- "--radius" "$tmp/err" && fail "a scene without geometry blames --radius"
 printf '\xef\xbb\xbfv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' > "$tmp/bom.obj"
 expect 0 "" "$tmp/bom.obj" "${small[@]}" -o "$tmp/x.png"
 
 # A mesh's warnings name the mesh file and where the scene file names it (a scene's "name" is
 # often empty); a model rendered by itself names the model.
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\n' > "$tmp/flat.obj"
-printf '{"camera": {"position": [0.3, 0.3, 3], "look_at": [0.3, 0.3, 0]}, "materials": {}, "lights": [{"type": "point", "position": [0, 1, 2], "power": 10}], "objects": [{"type": "mesh", "file": "flat.obj"}]}' > "$tmp/warn.json"
+mesh_scene flat.obj "0.3, 0.3, 3" "0.3, 0.3, 0" "0, 1, 2" > "$tmp/warn.json"
 expect 0 "flat.obj ($tmp/warn.json: /objects/0/file): 1 triangle without area (or not finite) dropped" "$tmp/warn.json" "${small[@]}" -o "$tmp/x.png"
 expect 0 "flat.obj: 1 triangle without area (or not finite) dropped" "$tmp/flat.obj" "${small[@]}" -o "$tmp/x.png"
 
@@ -134,18 +140,18 @@ printf 'newmtl red\nKd 1 0 0\n# SECRET\n' > "$tmp/outside.mtl"
 printf 'mtllib ../outside.mtl\nusemtl red\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' > "$tmp/model/m.obj"
 expect 2 "m.obj: mtllib '" "$tmp/model/m.obj" "${small[@]}" -o "$tmp/x.png"
 grep -q "lies outside the model's folder (--allow-outside-paths reads it)" "$tmp/err" && ! grep -q SECRET "$tmp/err" ||
-  { echo "FAIL: the refusal of outside.mtl"; cat "$tmp/err"; failures=$((failures + 1)); }
+  { fail "the refusal of outside.mtl"; cat "$tmp/err"; }
 expect 0 "" "$tmp/model/m.obj" "${small[@]}" -o "$tmp/x.png" --allow-outside-paths
-printf '{"camera": {"position": [0.3, 0.3, 3], "look_at": [0.3, 0.3, 0]}, "materials": {}, "lights": [{"type": "point", "position": [0, 1, 2], "power": 10}], "objects": [{"type": "mesh", "file": "model/m.obj"}]}' > "$tmp/outer.json"
+mesh_scene model/m.obj "0.3, 0.3, 3" "0.3, 0.3, 0" "0, 1, 2" > "$tmp/outer.json"
 expect 2 "outer.json: /objects/0/file: " "$tmp/outer.json" "${small[@]}" -o "$tmp/x.png"
 expect 0 "" "$tmp/outer.json" "${small[@]}" -o "$tmp/x.png" --allow-outside-paths
-printf '{"camera": {"position": [0, 1, 4], "look_at": [0, 1, 0]}, "materials": {}, "lights": [{"type": "point", "position": [0, 3, 0], "power": 10}], "objects": [{"type": "mesh", "file": "gone.obj"}]}' > "$tmp/gone.json"
+mesh_scene gone.obj "0, 1, 4" "0, 1, 0" "0, 3, 0" > "$tmp/gone.json"
 expect 2 "gone.json: /objects/0/file: " "$tmp/gone.json" "${small[@]}" -o "$tmp/x.png"
 
 # Issue 38: every documented form works as written, and no message grows with its input.
 expect 0 "" "${small[@]}" -o "$tmp/x.png" --no-quiet --no-validation --no-allow-outside-paths
 expect 0 "" "${small[@]}" -o "$tmp/x.png" --quiet --no-quiet
-[ -s "$tmp/err" ] || { echo "FAIL: --quiet --no-quiet printed nothing"; failures=$((failures + 1)); }
+[ -s "$tmp/err" ] || fail "--quiet --no-quiet printed nothing"
 expect 2 "--output: an empty file name" "${small[@]}" -o ''
 expect 2 "--stats: an empty file name" "${small[@]}" -o "$tmp/x.png" --stats ''
 # A scene file with a key of 3 MB: its JSON pointer is in the message.
@@ -156,24 +162,24 @@ code=$?
 bytes=$(wc -c <"$tmp/err")
 if [ "$code" -ne 2 ] || [ "$bytes" -gt 1001 ] || [ "$(wc -l <"$tmp/err")" -ne 1 ] || ! grep -qF "bytes cut]" "$tmp/err" ||
    ! grep -qF "unknown key" "$tmp/err"; then
-  echo "FAIL: a 3 MB key gave exit $code and $bytes bytes of message: $(head -c 300 "$tmp/err")"; failures=$((failures + 1))
+  fail "a 3 MB key gave exit $code and $bytes bytes of message: $(head -c 300 "$tmp/err")"
 else
   echo "ok: exit 2: a 3 MB key, a message of $bytes bytes"
 fi
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1e30\nv 1 0 1e30\nv 0 1 1e30\nf 1 2 3\nf 4 5 6\n' > "$tmp/far.obj"
 expect 2 "far.obj: the model's triangles are 1e+30 wide (z from 0 to 1e+30)" "$tmp/far.obj" "${small[@]}" -o "$tmp/x.png"
-grep -q -- "--radius" "$tmp/err" && { echo "FAIL: a model at 1e30 blames --radius"; failures=$((failures + 1)); }
-printf '{"camera": {"position": [0, 1, 4], "look_at": [0, 1, 0]}, "materials": {}, "lights": [{"type": "point", "position": [0, 3, 0], "power": 10}], "objects": [{"type": "mesh", "file": "far.obj"}]}' > "$tmp/far.json"
+grep -q -- "--radius" "$tmp/err" && fail "a model at 1e30 blames --radius"
+mesh_scene far.obj "0, 1, 4" "0, 1, 0" "0, 3, 0" > "$tmp/far.json"
 expect 2 "far.json: /objects/0/file: $tmp/far.obj: the model's triangles are 1e+30 wide" "$tmp/far.json" "${small[@]}" -o "$tmp/x.png"
 # A black image with exit 0 says so (a camera looking away from the only lit object).
 printf '{"camera": {"position": [0, 0, 0], "look_at": [0, 0, 1]}, "materials": {"grey": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5]}}, "lights": [{"type": "point", "position": [0, 0, -3], "power": 10}], "objects": [{"type": "sphere", "center": [0, 0, -4], "radius": 0.5, "material": "grey"}]}' > "$tmp/away.json"
 expect 0 "away.json: the image is nearly black: 0.0% of its pixels show" "$tmp/away.json" "${small[@]}" -o "$tmp/x.png" --stats "$tmp/away-stats.json"
-grep -q "nearly black" "$tmp/away-stats.json" || { echo "FAIL: the stats lack the warning"; failures=$((failures + 1)); }
+grep -q "nearly black" "$tmp/away-stats.json" || fail "the stats lack the warning"
 
 bench="$(dirname "$render")/photon-bench"
 "$bench" --resolutions 99999x99999 >"$tmp/out" 2>"$tmp/err"
 if [ $? -ne 2 ] || ! grep -qF -- "--resolutions: '99999x99999': the width 99999 is not in [1, 16384] (--width's range)" "$tmp/err"; then
-  echo "FAIL: photon-bench --resolutions 99999x99999"; cat "$tmp/err"; failures=$((failures + 1))
+  fail "photon-bench --resolutions 99999x99999"; cat "$tmp/err"
 else
   echo "ok: exit 2: photon-bench --resolutions 99999x99999"
 fi
@@ -188,13 +194,13 @@ converge="$(dirname "$render")/photon-converge"
 "$converge" "$scenes/cornell.json" --backend cpu --camera-path orbit:2 --path-frames 4 --samples 2 \
   --reference-frames 2 --set width=32 --set height=24 --set photons=2000 --json "$tmp/orbit.json" >"$tmp/out" 2>"$tmp/err"
 if [ $? -ne 0 ] || ! grep -q '"reproject_denoised"' "$tmp/orbit.json"; then
-  echo "FAIL: photon-converge --camera-path"; cat "$tmp/err"; failures=$((failures + 1))
+  fail "photon-converge --camera-path"; cat "$tmp/err"
 else
   echo "ok: photon-converge --camera-path orbit:2"
 fi
 "$converge" "$scenes/cornell.json" --camera-path spin:3 >"$tmp/out" 2>"$tmp/err"
 if [ $? -ne 2 ] || ! grep -qF -- "--camera-path: 'spin:3' is not orbit:SECONDS" "$tmp/err"; then
-  echo "FAIL: photon-converge --camera-path spin:3"; cat "$tmp/err"; failures=$((failures + 1))
+  fail "photon-converge --camera-path spin:3"; cat "$tmp/err"
 else
   echo "ok: exit 2: photon-converge --camera-path spin:3"
 fi

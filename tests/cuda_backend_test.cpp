@@ -104,15 +104,8 @@ TEST_F(CudaVsCpu, ReprojectionInTheParityBuild) {
     auto cuda = createRenderer("cuda", options);
     const CameraPath orbit{6.0};
     for (Renderer* b : {cpu.get(), cuda.get()}) {
-        b->setScene(scene);
-        b->setSettings(s);
-        for (int f = 0; f < 4; ++f) {
-            b->renderFrame();
-        }
-        for (int f = 1; f <= 3; ++f) {
-            b->moveCamera(cameraAt(orbit, scene.camera, f / 60.0));
-            b->renderFrame();
-        }
+        test::renderFrames(*b, scene, s, 4);
+        test::renderAlongPath(*b, orbit, scene.camera, 3);
     }
     std::vector<PixelAov> a = cpu->readAovs();
     std::vector<PixelAov> b = cuda->readAovs();
@@ -143,17 +136,11 @@ TEST_F(CudaVsCpu, EnvironmentScenesInTheParityBuild) {
 // Spectral rendering, and a dispersive prism whose paths keep one wavelength each: bit for bit in
 // the parity build, within 0.5% in the fast one.
 TEST_F(CudaVsCpu, SpectralInTheParityBuild) {
-    Scene prism = loadSceneFile(test::scenesDir() + "/prism.json");
-    for (const Scene& scene : {defaultScene(), prism}) {
-        for (Estimator e : {Estimator::Radius, Estimator::Sppm}) {
-            RenderSettings s = small();
-            s.spectral = true;
-            s.estimator = e;
-            SCOPED_TRACE(scene.name + " " + toString(e));
-            compare(scene, s, std::string("cuda-parity-spectral-") + toString(e), true);
-            compare(scene, s, std::string("cuda-fast-spectral-") + toString(e), false);
-        }
-    }
+    test::forSpectralCases(defaultScene(), small(), [&](const Scene& scene, const RenderSettings& s) {
+        SCOPED_TRACE(scene.name + " " + toString(s.estimator));
+        compare(scene, s, std::string("cuda-parity-spectral-") + toString(s.estimator), true);
+        compare(scene, s, std::string("cuda-fast-spectral-") + toString(s.estimator), false);
+    });
 }
 
 // With deterministic photon maps the parity build equals the CPU in order too, so that even

@@ -21,6 +21,7 @@
 
 #include "core/image/image.h"
 #include "core/system/error.h"
+#include "temp_folder.h"
 #include "tools/environment_files.h"
 
 namespace photon {
@@ -47,23 +48,13 @@ std::vector<glm::vec3> probeTexels(int width, int height) {
 }
 
 // Files in a folder of the test's own, removed afterwards.
-class EnvironmentLoader : public ::testing::Test {
+class EnvironmentLoader : public test::TempFolderTest {
 protected:
-    fs::path folder = fs::temp_directory_path() / ("photon-environment-" + std::to_string(::getpid()));
-
-    void SetUp() override { fs::create_directories(folder); }
-    void TearDown() override { fs::remove_all(folder); }
-
-    std::string path(const std::string& name) const { return (folder / name).string(); }
+    EnvironmentLoader() : TempFolderTest("photon-environment-") {}
 
     std::string write(const std::string& name, const std::string& bytes) const {
         std::ofstream(path(name), std::ios::binary) << bytes;
         return path(name);
-    }
-
-    std::string read(const std::string& file) const {
-        std::ifstream in(file, std::ios::binary);
-        return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
     }
 
     std::string hdr(const std::string& name, int width, int height, const std::vector<glm::vec3>& texels) const {
@@ -129,7 +120,7 @@ TEST_F(EnvironmentLoader, ZeroMapIsValid) {
 // zeros, and a dump of zero texels never ends the scanline).
 TEST_F(EnvironmentLoader, TruncatedHdrIsRefused) {
     for (int width : {5, 64}) {  // flat, run-length encoded
-        std::string whole = read(hdr("whole.hdr", width, 32, probeTexels(width, 32)));
+        std::string whole = test::fileBytes(hdr("whole.hdr", width, 32, probeTexels(width, 32)));
         std::string file = write("half-" + std::to_string(width) + ".hdr", whole.substr(0, whole.size() / 2));
         expectError(file, "truncated HDR file: the pixels stop in row");
         // Cut inside the header, and just before the last byte of the pixels.
@@ -139,7 +130,7 @@ TEST_F(EnvironmentLoader, TruncatedHdrIsRefused) {
 }
 
 TEST_F(EnvironmentLoader, CorruptHdrIsRefused) {
-    std::string bytes = read(hdr("whole.hdr", 64, 4, probeTexels(64, 4)));
+    std::string bytes = test::fileBytes(hdr("whole.hdr", 64, 4, probeTexels(64, 4)));
     std::size_t pixels = bytes.find("+X 64\n") + 6;
     std::string wide = bytes;
     wide[pixels + 3] = char(65);  // the first scanline says 65 texels

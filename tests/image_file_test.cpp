@@ -34,6 +34,7 @@
 #include "core/loaders/environment_loader.h"
 #include "core/system/output_file.h"
 #include "shared/tonemap.h"
+#include "temp_folder.h"
 
 namespace photon {
 namespace {
@@ -83,11 +84,6 @@ std::string inflatedRows(const std::vector<PngChunk>& chunks, std::size_t expect
     return rows;
 }
 
-std::string fileBytes(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
 // Radiance over several decades, zeros, negatives and values far above white, in every channel.
 Image testImage(std::uint32_t width, std::uint32_t height, std::uint32_t seed) {
     std::mt19937 rng(seed);
@@ -103,12 +99,9 @@ Image testImage(std::uint32_t width, std::uint32_t height, std::uint32_t seed) {
     return image;
 }
 
-class ImageFiles : public ::testing::Test {
+class ImageFiles : public test::TempFolderTest {
 protected:
-    fs::path folder = fs::temp_directory_path() / ("photon-image-files-" + std::to_string(::getpid()));
-    void SetUp() override { fs::create_directories(folder); }
-    void TearDown() override { fs::remove_all(folder); }
-    std::string path(const std::string& name) const { return (folder / name).string(); }
+    ImageFiles() : TempFolderTest("photon-image-files-") {}
 };
 
 TEST(ImageSrgb8, TableEqualsTheFormula) {
@@ -161,7 +154,7 @@ TEST_F(ImageFiles, PngDecodesToTheToneMappedBytes) {
         Image image = testImage(c.width, c.height, c.width * 1000 + c.height);
         std::string file = path("t.png");
         writeImage(file, image, c.exposure, c.curve);
-        std::string png = fileBytes(file);
+        std::string png = test::fileBytes(file);
 
         std::vector<PngChunk> chunks = pngChunks(png);
         ASSERT_GE(chunks.size(), 6u);
@@ -196,7 +189,7 @@ TEST_F(ImageFiles, PngDecodesToTheToneMappedBytes) {
 TEST_F(ImageFiles, PngCarriesSrgbBeforeItsPixels) {
     std::string file = path("srgb.png");
     writeImage(file, testImage(40, 40, 3), 0.0f, Tonemap::Aces);
-    std::vector<PngChunk> chunks = pngChunks(fileBytes(file));
+    std::vector<PngChunk> chunks = pngChunks(test::fileBytes(file));
     std::map<std::string, std::size_t> first;
     for (std::size_t i = 0; i < chunks.size(); ++i) {
         first.emplace(chunks[i].type, i);
@@ -226,7 +219,7 @@ TEST_F(ImageFiles, Rgb8PngDecodesToItsBytes) {
     }
     std::string file = path("rgb.png");
     writeRgb8Png(file, rgb.data(), width, height);
-    std::string png = fileBytes(file);
+    std::string png = test::fileBytes(file);
     inflatedRows(pngChunks(png), (1 + std::size_t(width) * 3) * height);
     int w = 0;
     int h = 0;

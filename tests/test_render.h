@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "core/render/devices.h"
+#include "core/scene/camera_path.h"
 
 namespace photon::test {
 
@@ -23,6 +24,15 @@ inline void renderFrames(Renderer& backend, const Scene& scene, const RenderSett
     backend.setScene(scene);
     backend.setSettings(settings);
     for (std::uint32_t f = 0; f < frames; ++f) {
+        backend.renderFrame();
+    }
+}
+
+// `moves` frames more on `backend`, the camera a step further along `path` from `start` before
+// each: frame f is f/60 s along the path.
+inline void renderAlongPath(Renderer& backend, const CameraPath& path, const CameraDesc& start, std::uint32_t moves) {
+    for (std::uint32_t f = 1; f <= moves; ++f) {
+        backend.moveCamera(cameraAt(path, start, f / 60.0));
         backend.renderFrame();
     }
 }

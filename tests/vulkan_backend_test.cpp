@@ -266,10 +266,7 @@ TEST_F(VulkanBackendTest, ReprojectionAgreesWithCpu) {
     render(scene, settings, 4);
     const CameraPath orbit{6.0};
     for (Renderer* b : {cpu_, vulkan_}) {
-        for (int f = 1; f <= 3; ++f) {
-            b->moveCamera(cameraAt(orbit, scene.camera, f / 60.0));
-            b->renderFrame();
-        }
+        test::renderAlongPath(*b, orbit, scene.camera, 3);
     }
     std::vector<PixelAov> a = cpu_->readAovs();
     std::vector<PixelAov> b = vulkan_->readAovs();
@@ -360,18 +357,12 @@ TEST_F(VulkanBackendTest, EnvironmentScenesMatchCpu) {
 // one wavelength each (a draw of their own random numbers): on lavapipe the photon maps and hit
 // points equal the CPU's bit for bit, and the images agree.
 TEST_F(VulkanBackendTest, SpectralStagesMatchCpu) {
-    Scene prism = loadSceneFile(test::scenesDir() + "/prism.json");
-    for (const Scene& scene : {featureScene(), prism}) {
-        for (Estimator estimator : {Estimator::Radius, Estimator::Sppm}) {
-            RenderSettings settings = smallSettings();
-            settings.spectral = true;
-            settings.estimator = estimator;
-            render(scene, settings, 2);
-            std::string what = scene.name + " spectral " + toString(estimator);
-            expectSameStages(what);
-            EXPECT_LE(compareImages(cpu_->image(), vulkan_->image(), what), imageTolerance());
-        }
-    }
+    test::forSpectralCases(featureScene(), smallSettings(), [&](const Scene& scene, const RenderSettings& settings) {
+        render(scene, settings, 2);
+        std::string what = scene.name + " spectral " + toString(settings.estimator);
+        expectSameStages(what);
+        EXPECT_LE(compareImages(cpu_->image(), vulkan_->image(), what), imageTolerance());
+    });
 }
 
 // A map that overflows its capacity in the first frame is grown and the frame runs again, so the

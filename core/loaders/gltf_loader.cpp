@@ -11,6 +11,7 @@
 #include <map>
 #include <memory>
 #include <set>
+#include <utility>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -40,6 +41,14 @@ const char* const kSupportedRequired[] = {
     "KHR_mesh_quantization",        "EXT_meshopt_compression",    "KHR_draco_mesh_compression",
     "KHR_materials_dispersion",
 };
+
+// EXT_meshopt_compression's modes and filters by their names in the file.
+const std::pair<const char*, MeshoptMode> kMeshoptModes[] = {
+    {"ATTRIBUTES", MeshoptMode::Attributes}, {"TRIANGLES", MeshoptMode::Triangles}, {"INDICES", MeshoptMode::Indices}};
+const std::pair<const char*, MeshoptFilter> kMeshoptFilters[] = {{"NONE", MeshoptFilter::None},
+                                                                 {"OCTAHEDRAL", MeshoptFilter::Octahedral},
+                                                                 {"QUATERNION", MeshoptFilter::Quaternion},
+                                                                 {"EXPONENTIAL", MeshoptFilter::Exponential}};
 
 struct Loader {
     Scene& scene;
@@ -120,6 +129,22 @@ struct Loader {
         return object.Has(key) && object.Get(key).IsString() ? object.Get(key).Get<std::string>() : fallback;
     }
 
+    // The value that an extension's string `key` names in `table`; any other string fails, with
+    // the names the table knows.
+    template <typename E, std::size_t N>
+    E named(const tinygltf::Value& object, const char* key, const char* fallback,
+            const std::pair<const char*, E> (&table)[N], const std::string& here) const {
+        std::string given = name(object, key, fallback);
+        std::string expected;
+        for (const auto& [text, value] : table) {
+            if (given == text) {
+                return value;
+            }
+            expected += (expected.empty() ? "" : "|") + std::string(text);
+        }
+        fail(here + "/" + key, "unknown " + std::string(key) + " " + quote(given) + " (expected " + expected + ")");
+    }
+
     Bytes decompressed(std::size_t index, const tinygltf::Value& ext, const std::string& here) {
         auto done = decoded.find(index);
         if (done != decoded.end()) {
@@ -134,28 +159,8 @@ struct Loader {
             (ext.Has("byteOffset") && !integer(ext, "byteOffset", offset)) || buffer > std::size_t(INT32_MAX)) {
             fail(here, "buffer, byteLength, byteStride and count must be integers of at least 0 (and byteOffset, if given)");
         }
-        std::string mode = name(ext, "mode", "");
-        if (mode == "ATTRIBUTES") {
-            v.mode = MeshoptMode::Attributes;
-        } else if (mode == "TRIANGLES") {
-            v.mode = MeshoptMode::Triangles;
-        } else if (mode == "INDICES") {
-            v.mode = MeshoptMode::Indices;
-        } else {
-            fail(here + "/mode", "unknown mode " + quote(mode) + " (expected ATTRIBUTES|TRIANGLES|INDICES)");
-        }
-        std::string filter = name(ext, "filter", "NONE");
-        if (filter == "NONE") {
-            v.filter = MeshoptFilter::None;
-        } else if (filter == "OCTAHEDRAL") {
-            v.filter = MeshoptFilter::Octahedral;
-        } else if (filter == "QUATERNION") {
-            v.filter = MeshoptFilter::Quaternion;
-        } else if (filter == "EXPONENTIAL") {
-            v.filter = MeshoptFilter::Exponential;
-        } else {
-            fail(here + "/filter", "unknown filter " + quote(filter) + " (expected NONE|OCTAHEDRAL|QUATERNION|EXPONENTIAL)");
-        }
+        v.mode = named(ext, "mode", "", kMeshoptModes, here);
+        v.filter = named(ext, "filter", "NONE", kMeshoptFilters, here);
         // What the view says it holds is what it must decode to: its accessors are checked against it.
         const tinygltf::BufferView& bv = model.bufferViews[index];
         if (v.stride == 0 || bv.byteLength % v.stride != 0 || bv.byteLength / v.stride != v.count) {

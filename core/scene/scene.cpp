@@ -62,6 +62,16 @@ bool triangleTangent(glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, glm::vec2 c0, glm
     return true;
 }
 
+// Moves each shape of `material` (none for NONE) by `delta`, through its anchor point.
+template <typename Shape>
+void moveShapesOf(std::vector<Shape>& shapes, glm::vec3 Shape::*anchor, std::uint32_t material, glm::vec3 delta) {
+    for (Shape& shape : shapes) {
+        if (material != NONE && shape.material == material) {
+            shape.*anchor += delta;
+        }
+    }
+}
+
 }  // namespace
 
 Light emptyLight(std::uint32_t type, glm::vec3 position, glm::vec3 power) {
@@ -407,19 +417,11 @@ void Scene::moveLight(std::uint32_t light, glm::vec3 delta) {
             break;
         case LIGHT_SPHERE:
             l.position += delta;
-            for (Sphere& sphere : spheres) {
-                if (ownSurface && sphere.material == emitter) {
-                    sphere.center += delta;
-                }
-            }
+            moveShapesOf(spheres, &Sphere::center, ownSurface ? emitter : NONE, delta);
             break;
         case LIGHT_QUAD:
             l.position += delta;
-            for (Quad& quad : quads) {
-                if (ownSurface && quad.material == emitter) {
-                    quad.corner += delta;
-                }
-            }
+            moveShapesOf(quads, &Quad::corner, ownSurface ? emitter : NONE, delta);
             break;
         case LIGHT_TRIANGLES:
             // The triangles finalize() gathered into this light (it makes the light again).
