@@ -106,10 +106,8 @@ PH_FN void denoisePrepare(BUF_PARAM uint pixel) {
     // Member by member: glslang stores a whole struct with an array member into a buffer with
     // invalid SPIR-V (the array's stride makes the two struct types differ).
     BUF(denoisePixels)[pixel].planes[0] = vec4(illumination, variance);
-    BUF(denoisePixels)[pixel].normal = normal;
-    BUF(denoisePixels)[pixel].depth = a.coverage > 0.0f ? a.depth : 0.0f;
-    BUF(denoisePixels)[pixel].depthSlope = length(vec2(max(slopeX, 0.0f), max(slopeY, 0.0f)));
-    BUF(denoisePixels)[pixel].albedo = a.albedo;
+    BUF(denoisePixels)[pixel].guide = vec4(normal, a.coverage > 0.0f ? a.depth : 0.0f);
+    BUF(denoisePixels)[pixel].albedo = vec4(a.albedo, length(vec2(max(slopeX, 0.0f), max(slopeY, 0.0f))));
 }
 
 // The normal weight x^(2^DENOISE_NORMAL_SQUARINGS), by squarings.
@@ -152,16 +150,18 @@ PH_FN void denoiseLevel(BUF_PARAM uint pixel, uint level) {
     uint y = pixel / width;
     uint source = level & 1u;
     vec4 centre = BUF(denoisePixels)[pixel].planes[source];
-    vec3 normal = BUF(denoisePixels)[pixel].normal;
-    float depth = BUF(denoisePixels)[pixel].depth;
-    vec3 albedo = BUF(denoisePixels)[pixel].albedo;
+    vec4 guide = BUF(denoisePixels)[pixel].guide;
+    vec4 albedoSlope = BUF(denoisePixels)[pixel].albedo;
+    vec3 normal = vec3(guide);
+    float depth = guide.w;
+    vec3 albedo = vec3(albedoSlope);
     vec4 filtered = centre;
     if (dot(normal, normal) > 0.0f) {
         float luminance = luminanceOf(vec3(centre));
         // Level 0 blurs the variance and passes it on: the levels all use the same.
         float variance = level == 0u ? blurredVariance(BUF_ARG x, y, source) : centre.w;
         float sigmaL = DENOISE_SIGMA_LUMINANCE * sqrt(variance) + 1.0e-6f;
-        float reach = DENOISE_SIGMA_DEPTH * BUF(denoisePixels)[pixel].depthSlope;
+        float reach = DENOISE_SIGMA_DEPTH * albedoSlope.w;
         float depthFloor = 1.0e-3f * depth + 1.0e-6f;
         int hole = 1 << int(level);
         vec3 sum = vec3(0.0f);
@@ -182,11 +182,12 @@ PH_FN void denoiseLevel(BUF_PARAM uint pixel, uint level) {
                     if (!isFinite(vec3(c))) {
                         continue;  // no neighbour's overflow reaches this pixel
                     }
-                    float wn = normalWeight(max(dot(normal, BUF(denoisePixels)[q].normal), 0.0f));
+                    vec4 g = PH_LOAD_VEC4(BUF(denoisePixels)[q].guide);
+                    float wn = normalWeight(max(dot(normal, vec3(g)), 0.0f));
                     float distance = float(hole) * length(vec2(float(dx), float(dy)));
-                    float wz = abs(depth - BUF(denoisePixels)[q].depth) / (reach * distance + depthFloor);
+                    float wz = abs(depth - g.w) / (reach * distance + depthFloor);
                     float wl = abs(luminance - luminanceOf(vec3(c))) / sigmaL;
-                    vec3 da = abs(albedo - BUF(denoisePixels)[q].albedo);
+                    vec3 da = abs(albedo - vec3(PH_LOAD_VEC4(BUF(denoisePixels)[q].albedo)));
                     float wa = (da.x + da.y + da.z) / DENOISE_SIGMA_ALBEDO;
                     w = wn * exp(-wz - wl - wa);
                 }

@@ -49,6 +49,7 @@
 #define PH_UNUSED(x)
 #define PH_COVERS(count, cases)
 #define PH_ALIGN16
+#define PH_LOAD_VEC4(lvalue) (lvalue)
 #define BUF_PARAM
 #define BUF_ARG
 #define BUF(name) name
@@ -89,6 +90,14 @@
 // Buffer structs are multiples of 16 bytes; saying so lets compilers load them 16 bytes at a time
 // (GLM's vec3 alone would make them 4-byte aligned).
 #define PH_ALIGN16 alignas(16)
+// A vec4 member of a buffer element, read whole. nvcc splits a glm::vec4 read into four 4-byte
+// loads when only some components are used (GLSL compilers and the CPU read it as they like);
+// through float4 it is one 16-byte load: the denoiser's taps read their neighbours' guides so.
+#ifdef __CUDACC__
+#define PH_LOAD_VEC4(lvalue) ::photon::loadVec4(&(lvalue))
+#else
+#define PH_LOAD_VEC4(lvalue) (lvalue)
+#endif
 #define BUF_PARAM const Bindings &bindings,
 #define BUF_ARG bindings,
 #define BUF(name) bindings.name
@@ -98,6 +107,15 @@
 #include <cooperative_groups/reduce.h>
 #include <type_traits>
 namespace photon {
+__host__ __device__ __forceinline__ glm::vec4 loadVec4(const glm::vec4* p) {
+#ifdef __CUDA_ARCH__
+    float4 v = *reinterpret_cast<const float4*>(p);
+    return glm::vec4(v.x, v.y, v.z, v.w);
+#else
+    return *p;
+#endif
+}
+
 // One slot of an append buffer for each calling thread: the threads of a warp that append at the
 // same time share one atomic, since a million threads on one counter would queue up at L2.
 __device__ inline std::uint32_t reserveSlotCoalesced(std::uint32_t* counter) {
