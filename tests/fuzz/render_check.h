@@ -8,7 +8,10 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
+#include <vector>
 
+#include "core/frame/renderer.h"
 #include "core/image/image.h"
 #include "core/scene/scene.h"
 #include "core/settings/settings.h"
@@ -25,13 +28,15 @@ inline void renderTiny(const Scene& scene, RenderSettings settings, std::uint32_
     settings.gatherRays = std::min(settings.gatherRays, 4u);
     settings.lightSamples = std::min(settings.lightSamples, 2u);
     settings.gridResolution = std::min(settings.gridResolution, 64u);
-    auto backend = createCpuDevice();
-    backend->setScene(scene);
-    backend->setSettings(settings);
+    std::vector<std::unique_ptr<Device>> devices;
+    devices.push_back(createCpuDevice());
+    Renderer renderer(std::move(devices));
+    renderer.setScene(scene);
+    renderer.setSettings(settings);
     for (std::uint32_t f = 0; f < settings.frames; ++f) {
-        backend->renderFrame();
+        renderer.renderFrame();
     }
-    if (!allFinite(backend->image())) {
+    if (!allFinite(renderer.image())) {
         std::fprintf(stderr, "fuzz: a non-finite pixel\n");
         std::abort();
     }
