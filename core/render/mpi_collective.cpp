@@ -67,6 +67,8 @@ public:
         check(MPI_Comm_size(MPI_COMM_WORLD, &size), "size");
         rank_ = static_cast<std::uint32_t>(rank);
         size_ = static_cast<std::uint32_t>(size);
+        counts_.resize(size_);
+        offsets_.resize(size_);
     }
 
     std::uint32_t processes() const override { return size_; }
@@ -87,31 +89,29 @@ public:
             if (bytes > INT_MAX) {
                 throw RuntimeError("MPI: " + std::to_string(held) + " photons of one map are more than one message carries");
             }
-            std::vector<Photon> mine(leads() ? 0 : held);
-            if (!mine.empty()) {
-                root.readBuffer(BINDING_PHOTONS, std::uint64_t(grid.photonOffset) * sizeof(Photon), bytes, mine.data());
+            sent_.resize(leads() ? 0 : held);
+            if (!sent_.empty()) {
+                root.readBuffer(BINDING_PHOTONS, std::uint64_t(grid.photonOffset) * sizeof(Photon), bytes, sent_.data());
             }
             int count = static_cast<int>(bytes);
-            std::vector<int> counts(size_);
-            check(MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD), "photon counts");
-            std::vector<int> offsets(size_, 0);
+            check(MPI_Gather(&count, 1, MPI_INT, counts_.data(), 1, MPI_INT, 0, MPI_COMM_WORLD), "photon counts");
             std::uint64_t received = 0;
             for (std::uint32_t r = 0; r < size_; ++r) {
-                offsets[r] = static_cast<int>(std::min<std::uint64_t>(received, INT_MAX));
-                received += leads() ? std::uint64_t(counts[r]) : 0u;
+                offsets_[r] = static_cast<int>(std::min<std::uint64_t>(received, INT_MAX));
+                received += leads() ? std::uint64_t(counts_[r]) : 0u;
             }
             if (received > INT_MAX) {
                 throw RuntimeError("MPI: the processes' photons of one map are more than one message carries");
             }
-            std::vector<Photon> theirs(received / sizeof(Photon));
-            check(MPI_Gatherv(mine.data(), count, MPI_BYTE, theirs.data(), counts.data(), offsets.data(), MPI_BYTE, 0,
+            received_.resize(received / sizeof(Photon));
+            check(MPI_Gatherv(sent_.data(), count, MPI_BYTE, received_.data(), counts_.data(), offsets_.data(), MPI_BYTE, 0,
                               MPI_COMM_WORLD),
                   "photons");
             if (leads()) {
-                auto moved = static_cast<std::uint32_t>(std::min<std::uint64_t>(theirs.size(), grid.photonCapacity - held));
+                auto moved = static_cast<std::uint32_t>(std::min<std::uint64_t>(received_.size(), grid.photonCapacity - held));
                 if (moved > 0) {
                     root.writeBuffer(BINDING_PHOTONS, std::uint64_t(grid.photonOffset + held) * sizeof(Photon),
-                                     std::uint64_t(moved) * sizeof(Photon), theirs.data());
+                                     std::uint64_t(moved) * sizeof(Photon), received_.data());
                 }
             }
             exchange.bytes += leads() ? received : bytes;
@@ -155,6 +155,11 @@ public:
 
 private:
     std::unique_ptr<Collective> local_;
+    // Kept from frame to frame: this process's photons of one map, and the leader's receipt.
+    std::vector<Photon> sent_;
+    std::vector<Photon> received_;
+    std::vector<int> counts_;   // bytes from each process
+    std::vector<int> offsets_;  // ... and where they go
     std::uint32_t rank_ = 0;
     std::uint32_t size_ = 1;
 };
