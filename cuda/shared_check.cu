@@ -15,6 +15,7 @@
 #include "../shared/layout.h"
 #include "../shared/light_types.h"
 #include "../shared/map_photon.h"
+#include "../shared/medium.h"
 #include "../shared/light_sources.h"
 #include "../shared/emission.h"
 #include "../shared/caustic_aiming.h"
@@ -37,6 +38,7 @@
 #include "../shared/surface.h"
 #include "../shared/texture.h"
 #include "../shared/tonemap.h"
+#include "../shared/volume_estimate.h"
 
 namespace photon {
 __global__ void sharedCheck(Bindings bindings) {

@@ -47,7 +47,8 @@
     X(AOVS, 28u, PixelAov, aovs, RW, AOV_PIXEL)                              \
     X(DENOISE, 29u, DenoisePixel, denoisePixels, RW, DENOISE_PIXEL)         \
     X(DENOISED, 30u, vec4, denoised, RW, DENOISE_PIXEL)                    \
-    X(HISTORY, 31u, HistoryPixel, history, RW, HISTORY_PIXEL)
+    X(HISTORY, 31u, HistoryPixel, history, RW, HISTORY_PIXEL)               \
+    X(MEDIA, 32u, Medium, media, RO, SCENE)
 
 PH_NAMESPACE_BEGIN
 

@@ -114,7 +114,8 @@ PH_CONST uint DENOISE_MODE_COUNT = 2u;
 // these rows, so that a further map is one row here plus the photon pass that fills it.
 #define PH_MAPS(X)                                                                   \
     X(GLOBAL, 0u, "global", "--radius", 8.0f, 1.0f, 64u, 1.5f, 16.0f)                 \
-    X(CAUSTIC, 1u, "caustic", "--caustic-radius", 4.0f, 0.5f, 64u, 1.0f, 8.0f)
+    X(CAUSTIC, 1u, "caustic", "--caustic-radius", 4.0f, 0.5f, 64u, 1.0f, 8.0f)          \
+    X(VOLUME, 2u, "volume", "--volume-radius", 8.0f, 2.0f, 64u, 1.5f, 16.0f)
 
 // (No variadic macros: GLSL's preprocessor has none.)
 #define PH_MAP_CONSTANT(NAME, id, name, radiusFlag, autoFootprints, fallbackShare, sppmPhotons, sppmMin, sppmMax) \
@@ -122,6 +123,9 @@ PH_CONST uint DENOISE_MODE_COUNT = 2u;
 PH_MAPS(PH_MAP_CONSTANT)
 #define PH_COUNT_MAP(NAME, id, name, radiusFlag, autoFootprints, fallbackShare, sppmPhotons, sppmMin, sppmMax) 1u +
 PH_CONST uint MAP_COUNT = PH_MAPS(PH_COUNT_MAP) 0u;
+// The maps estimated at the eye paths' hit points (global, caustic: the first rows); the volume
+// map is estimated along the eye rays through media (volume_estimate.h) and has no sppm state.
+PH_CONST uint SURFACE_MAP_COUNT = 2u;
 
 // Slots of the counters buffer, each a run of MAP_COUNT (the histograms: of MAP_COUNT × bins).
 PH_CONST uint COUNTER_STORED = 0u;                   // photons appended to each map this frame
@@ -147,6 +151,7 @@ PH_CONST float SPPM_FIRST_MIN_FOOTPRINTS = 0.5f;
 // photonBounce() result bits.
 PH_CONST uint STORE_GLOBAL = 1u;
 PH_CONST uint STORE_CAUSTIC = 2u;
+PH_CONST uint STORE_VOLUME = 4u;
 
 // PhotonPath::flags bits.
 PH_CONST uint PATH_ALIVE = 1u;

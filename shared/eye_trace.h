@@ -10,6 +10,7 @@
 #include "dispersion.h"
 #include "lights.h"
 #include "surface.h"
+#include "volume_estimate.h"
 
 PH_NAMESPACE_BEGIN
 
@@ -64,16 +65,20 @@ PH_FN bool shadowRayReaches(BUF_PARAM vec3 x, vec3 ng, vec3 direction, vec3 poin
 
 // Reflected direct light at x from the environment, by multiple importance sampling of its map
 // and of the BSDF (Veach 1997, the power heuristic): one shadow ray each. The map finds a small
-// bright sky or sun, the BSDF a glossy highlight of a broad one. Five draws.
+// bright sky or sun, the BSDF a glossy highlight of a broad one. Five draws. x lies in `medium`.
 PH_FN vec3 environmentDirectLight(BUF_PARAM PH_IN(Light) light, vec3 x, vec3 ns, vec3 ng, vec3 wo, PH_IN(Material) m,
-                                  PH_INOUT(Rng) rng) {
+                                  uint medium, PH_INOUT(Rng) rng) {
     vec3 sum = vec3(0.0f);
     LightSample ls = sampleDirectLight(BUF_ARG light, x, rng);
     float cosine = dot(ns, ls.direction);
     if (cosine > 0.0f && dot(ng, ls.direction) > 0.0f && !isBlack(ls.radiance) &&
         shadowRayReaches(BUF_ARG x, ng, ls.direction, ls.point)) {
         float weight = powerHeuristic(ls.pdf, pdfBsdf(m, wo, ls.direction, ns));
-        sum += evalBsdf(m, wo, ls.direction, ns) * spectralFromRgb(BUF_ARG ls.radiance) * (cosine * weight);
+        vec3 radiance = spectralFromRgb(BUF_ARG ls.radiance);
+        if (medium != NONE) {
+            radiance *= mediumTransmittance(BUF_ARG medium, x, ls.direction, FLOAT_MAX);
+        }
+        sum += evalBsdf(m, wo, ls.direction, ns) * radiance * (cosine * weight);
     }
     BsdfSample bs = sampleBsdf(m, wo, ng, ns, rng);
     vec3 wi = bs.direction;
@@ -86,22 +91,27 @@ PH_FN vec3 environmentDirectLight(BUF_PARAM PH_IN(Light) light, vec3 x, vec3 ns,
     vec3 far = x + wi * (2.0f * (length(x - boundingCenter(light)) + boundingRadius(light)));
     if (!isBlack(radiance) && shadowRayReaches(BUF_ARG x, ng, wi, far)) {
         float weight = powerHeuristic(pdf, environmentPdf(BUF_ARG light, wi));
-        sum += evalBsdf(m, wo, wi, ns) * spectralFromRgb(BUF_ARG radiance) * (cosI * weight / pdf);
+        vec3 arriving = spectralFromRgb(BUF_ARG radiance);
+        if (medium != NONE) {
+            arriving *= mediumTransmittance(BUF_ARG medium, x, wi, FLOAT_MAX);
+        }
+        sum += evalBsdf(m, wo, wi, ns) * arriving * (cosI * weight / pdf);
     }
     return sum;
 }
 
 // Reflected direct light at x from every light, lightSamples shadow rays each (two for the
 // environment). ns is the shading normal and ng the geometric one, both facing wo; light from
-// behind the geometric surface is not reflected, and shadow rays leave from its side.
-PH_FN vec3 directLight(BUF_PARAM vec3 x, vec3 ns, vec3 ng, vec3 wo, PH_IN(Material) m, PH_INOUT(Rng) rng) {
+// behind the geometric surface is not reflected, and shadow rays leave from its side, through
+// `medium` (NONE: none).
+PH_FN vec3 directLight(BUF_PARAM vec3 x, vec3 ns, vec3 ng, vec3 wo, PH_IN(Material) m, uint medium, PH_INOUT(Rng) rng) {
     vec3 sum = vec3(0.0f);
     uint samples = BUF(params).lightSamples;
     for (uint l = 0u; l < BUF(params).scene.lightCount; ++l) {
         Light light = BUF(lights)[l];
         for (uint j = 0u; j < samples; ++j) {
             if (light.type == LIGHT_ENVIRONMENT) {
-                sum += environmentDirectLight(BUF_ARG light, x, ns, ng, wo, m, rng);
+                sum += environmentDirectLight(BUF_ARG light, x, ns, ng, wo, m, medium, rng);
                 continue;
             }
             LightSample ls = sampleDirectLight(BUF_ARG light, x, rng);
@@ -110,7 +120,11 @@ PH_FN vec3 directLight(BUF_PARAM vec3 x, vec3 ns, vec3 ng, vec3 wo, PH_IN(Materi
                 continue;
             }
             if (shadowRayReaches(BUF_ARG x, ng, ls.direction, ls.point)) {
-                sum += evalBsdf(m, wo, ls.direction, ns) * spectralFromRgb(BUF_ARG ls.radiance) * cosine;
+                vec3 radiance = spectralFromRgb(BUF_ARG ls.radiance);
+                if (medium != NONE) {
+                    radiance *= mediumTransmittance(BUF_ARG medium, x, ls.direction, length(ls.point - x));
+                }
+                sum += evalBsdf(m, wo, ls.direction, ns) * radiance * cosine;
             }
         }
     }
@@ -174,6 +188,18 @@ PH_FN uint tracePrimaryRay(BUF_PARAM uint pixel) {
     return traceRay(BUF_ARG ray, QUERY_CLOSEST).kind != NONE ? 1u : 0u;
 }
 
+// The eye ray's way through its medium up to tHit (FLOAT_MAX: it leaves the scene): the light the
+// medium scatters towards the eye joins `volume`, and the path's weight takes the transmittance.
+PH_FN void eyeRayThroughMedium(BUF_PARAM PH_INOUT(vec3) volume, PH_INOUT(vec3) weight, uint medium, PH_IN(Ray) ray,
+                               float tHit) {
+    Medium md = loadMedium(BUF_ARG medium);
+    vec2 span = mediumSpan(md, ray.origin, ray.direction, tHit);
+    if (span.x < span.y) {
+        volume += weight * beamRadianceEstimate(BUF_ARG md, ray.origin, ray.direction, span);
+        weight *= expNegative3(extinctionOf(md) * (span.y - span.x));
+    }
+}
+
 PH_FN HitPoint tracePixel(BUF_PARAM uint pixel) {
     uint width = BUF(params).width;
     Rng rng = rngCreate(pixel, BUF(params).frameIndex, BUF(params).seed, STREAM_CAMERA);
@@ -184,9 +210,15 @@ PH_FN HitPoint tracePixel(BUF_PARAM uint pixel) {
     uint channel = CHANNEL_ALL;
     bool emittersSampled = false;  // the last bounce's lobe took direct light by shadow rays
     float travelled = 0.0f;        // the path's length so far
+    uint medium = BUF(params).scene.medium;
+    vec3 volume = vec3(0.0f);      // light scattered towards the eye by media along the path
     for (uint depth = 0u; depth < BUF(params).maxEyeDepth; ++depth) {
         Hit hit;
-        if (!traceClosest(BUF_ARG ray, hit)) {
+        bool hits = traceClosest(BUF_ARG ray, hit);
+        if (medium != NONE) {
+            eyeRayThroughMedium(BUF_ARG volume, weight, medium, ray, hits ? hit.t : FLOAT_MAX);
+        }
+        if (!hits) {
             // Seen by the camera or through mirrors and glass; after a glossy bounce, direct light
             // has counted an environment that lights the scene already.
             if (!(emittersSampled && BUF(params).scene.environmentLight != NONE)) {
@@ -226,7 +258,7 @@ PH_FN HitPoint tracePixel(BUF_PARAM uint pixel) {
             bool stores = (surface & SURFACE_STORES_PHOTONS) != 0u;
             if (stores || m.roughness >= PBR_DELTA_ALPHA) {
                 meetAovSurface(BUF_ARG hp, weight, m.albedo, ns, travelled);
-                hp.direct += weight * directLight(BUF_ARG hit.position, ns, ng, wo, m, rng);
+                hp.direct += weight * directLight(BUF_ARG hit.position, ns, ng, wo, m, medium, rng);
             }
             float pTraced = stores ? pbrTracedProbability(m, dot(wo, ns)) : 1.0f;
             if (stores && rngNext(rng) >= pTraced) {
@@ -239,6 +271,7 @@ PH_FN HitPoint tracePixel(BUF_PARAM uint pixel) {
             }
             weight *= bs.weight / pTraced;
             emittersSampled = m.roughness >= PBR_DELTA_ALPHA && dot(bs.direction, ng) > 0.0f;
+            medium = mediumAcross(BUF_ARG medium, m, hit.kind, hit.normal, wo, bs.direction);
             ray = makeRay(offsetRayOrigin(hit.position, sp.geometricNormal, bs.direction), bs.direction, FLOAT_MAX);
             continue;
         }
@@ -255,7 +288,7 @@ PH_FN HitPoint tracePixel(BUF_PARAM uint pixel) {
         }
         if ((surface & SURFACE_ENDS_EYE_PATHS) != 0u && !mirrorCoat) {
             endPathAt(hp, hit.position, hit.material, weight, ns, ng, wo, m);
-            hp.direct += weight * directLight(BUF_ARG hit.position, ns, ng, wo, storedPart(m), rng);
+            hp.direct += weight * directLight(BUF_ARG hit.position, ns, ng, wo, storedPart(m), medium, rng);
             break;
         }
         BsdfSample bs;
@@ -268,8 +301,10 @@ PH_FN HitPoint tracePixel(BUF_PARAM uint pixel) {
             break;
         }
         weight *= bs.weight;
+        medium = mediumAcross(BUF_ARG medium, m, hit.kind, hit.normal, wo, bs.direction);
         ray = makeRay(offsetRayOrigin(hit.position, sp.geometricNormal, bs.direction), bs.direction, FLOAT_MAX);
     }
+    hp.direct += volume;
     hp.channel = channel;
     return hp;
 }

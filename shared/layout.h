@@ -66,9 +66,19 @@ struct PH_ALIGN16 Material {
     // pbr: metallic and transmission factors ∈ [0, 1]; every type: coverage α (MASK: cut out where
     // α < alphaCutoff; BLEND: kept with probability α)
     vec3 attenuation; uint flags;    // absorption coefficient σa [1/m] inside (Beer–Lambert); MATERIAL_FLAG_*
-    float normalScale; float dispersion; uint pad1; uint pad2;
+    float normalScale; float dispersion; uint medium; uint pad2;
     // normalScale: scale of the normal texture's x and y; dispersion: 20 / V_d of glass and pbr
-    // transmission, V_d the Abbe number (glTF KHR_materials_dispersion; 0: none), spectral.h
+    // transmission, V_d the Abbe number (glTF KHR_materials_dispersion; 0: none), spectral.h;
+    // medium: the participating medium inside (a Medium; NONE: none), medium.h
+};
+
+// A homogeneous participating medium (medium.h): what fills the inside of the objects whose
+// material names it, or the scene (SceneInfo.medium) within its box.
+struct PH_ALIGN16 Medium {
+    vec3 absorption; float g;      // absorption coefficient σa [1/m]; Henyey–Greenstein's mean cosine
+    vec3 scattering; uint pad0;    // scattering coefficient σs [1/m]
+    vec3 lower; float pad1;        // the box it fills (the scene's medium: its bounds; an object's:
+    vec3 upper; float pad2;        // everything, the object bounds it)
 };
 
 // An image in the texels buffer: width × height texels from `offset`, row by row from the top, as
@@ -134,8 +144,9 @@ struct PH_ALIGN16 SceneInfo {
     uint planeCount; uint lightCount; uint targetCount; uint infiniteLight;
     // lightCount: lights[0 .. lightCount) emit photons and are sampled for direct light;
     // infiniteLight: what rays that leave the scene see, infiniteLights[infiniteLight]
-    uint bvhNodeCount; uint linearCount; uint environmentLight; uint pad1;
+    uint bvhNodeCount; uint linearCount; uint environmentLight; uint medium;
     // environmentLight: the environment's index in lights when it lights the scene, else NONE;
+    // medium: the Medium the camera and the lights are in, within its box (NONE: none);
     // bvhNodeCount 0: no hierarchy is traversed; linearCount: bounded primitives tested one by one
     // instead (a scene too small for a hierarchy to pay), primitiveRefs[0 .. linearCount)
     uint pad2; uint pad3; uint pad4; uint pad5;  // (FrameParams keeps its layout)
@@ -229,8 +240,8 @@ struct PH_ALIGN16 SppmFlux {
 
 struct PH_ALIGN16 SppmPixel {
     vec3 direct; float pad0;            // mean over frames of emission, background and direct light
-    SppmFlux maps[MAP_COUNT];
-    float count[SPPM_COUNT_SLOTS];      // N of each map (the slots beyond MAP_COUNT unused)
+    SppmFlux maps[SURFACE_MAP_COUNT];
+    float count[SPPM_COUNT_SLOTS];      // N of each map (the slots beyond SURFACE_MAP_COUNT unused)
 };
 
 // A pixel's auxiliary images (aov.h), running means over the frames since the last reset, as
@@ -270,9 +281,9 @@ namespace photon {
 PH_SIZE(PixelAov, 64); PH_OFFSET(PixelAov, background, 48); PH_OFFSET(PixelAov, depth, 12); PH_OFFSET(PixelAov, normal, 16);
 PH_OFFSET(PixelAov, coverage, 28); PH_OFFSET(PixelAov, luminance, 32); PH_OFFSET(PixelAov, luminance2, 36);
 PH_OFFSET(PixelAov, frames, 40);
-PH_SIZE(HistoryPixel, 16 + MAP_COUNT * 16 + 4 * SPPM_COUNT_SLOTS + 16 + 64); PH_OFFSET(HistoryPixel, sppm, 0);
-PH_OFFSET(HistoryPixel, accumulation, 16 + MAP_COUNT * 16 + 4 * SPPM_COUNT_SLOTS);
-PH_OFFSET(HistoryPixel, aov, 16 + MAP_COUNT * 16 + 4 * SPPM_COUNT_SLOTS + 16);
+PH_SIZE(HistoryPixel, 16 + SURFACE_MAP_COUNT * 16 + 4 * SPPM_COUNT_SLOTS + 16 + 64); PH_OFFSET(HistoryPixel, sppm, 0);
+PH_OFFSET(HistoryPixel, accumulation, 16 + SURFACE_MAP_COUNT * 16 + 4 * SPPM_COUNT_SLOTS);
+PH_OFFSET(HistoryPixel, aov, 16 + SURFACE_MAP_COUNT * 16 + 4 * SPPM_COUNT_SLOTS + 16);
 PH_SIZE(DenoisePixel, 64); PH_OFFSET(DenoisePixel, planes, 0); PH_OFFSET(DenoisePixel, guide, 32);
 PH_OFFSET(DenoisePixel, albedo, 48);
 PH_SIZE(Sphere, 32); PH_OFFSET(Sphere, radius, 12); PH_OFFSET(Sphere, material, 16);
@@ -287,7 +298,9 @@ PH_SIZE(Material, 112); PH_OFFSET(Material, type, 12); PH_OFFSET(Material, specu
 PH_OFFSET(Material, roughness, 28); PH_OFFSET(Material, emission, 32); PH_OFFSET(Material, ior, 44);
 PH_OFFSET(Material, albedoTexture, 48); PH_OFFSET(Material, emissionTexture, 60); PH_OFFSET(Material, metallic, 64);
 PH_OFFSET(Material, alphaCutoff, 76); PH_OFFSET(Material, attenuation, 80); PH_OFFSET(Material, flags, 92);
-PH_OFFSET(Material, normalScale, 96); PH_OFFSET(Material, dispersion, 100);
+PH_OFFSET(Material, normalScale, 96); PH_OFFSET(Material, dispersion, 100); PH_OFFSET(Material, medium, 104);
+PH_SIZE(Medium, 64); PH_OFFSET(Medium, g, 12); PH_OFFSET(Medium, scattering, 16); PH_OFFSET(Medium, lower, 32);
+PH_OFFSET(Medium, upper, 48);
 PH_SIZE(Texture, 48); PH_OFFSET(Texture, wrap, 12); PH_OFFSET(Texture, transformS, 16); PH_OFFSET(Texture, transformT, 32);
 PH_SIZE(WideBvhNode, 64); PH_OFFSET(WideBvhNode, scales, 12); PH_OFFSET(WideBvhNode, lowerX, 16);
 PH_OFFSET(WideBvhNode, kinds, 28); PH_OFFSET(WideBvhNode, upperX, 32); PH_OFFSET(WideBvhNode, pad0, 44);
@@ -304,7 +317,7 @@ PH_OFFSET(Camera, focusDistance, 28); PH_OFFSET(Camera, right, 32); PH_OFFSET(Ca
 PH_OFFSET(Camera, up, 48); PH_OFFSET(Camera, aspect, 60);
 PH_SIZE(SceneInfo, 48); PH_OFFSET(SceneInfo, lightCount, 4); PH_OFFSET(SceneInfo, targetCount, 8);
 PH_OFFSET(SceneInfo, infiniteLight, 12); PH_OFFSET(SceneInfo, bvhNodeCount, 16); PH_OFFSET(SceneInfo, linearCount, 20);
-PH_OFFSET(SceneInfo, environmentLight, 24);
+PH_OFFSET(SceneInfo, environmentLight, 24); PH_OFFSET(SceneInfo, medium, 28);
 PH_SIZE(GridParams, 48); PH_OFFSET(GridParams, cellSize, 12); PH_OFFSET(GridParams, resolution, 16);
 PH_OFFSET(GridParams, cellOffset, 28); PH_OFFSET(GridParams, photonOffset, 32);
 PH_OFFSET(GridParams, radius, 40); PH_OFFSET(GridParams, pad0, 44);
@@ -319,9 +332,9 @@ PH_OFFSET(FrameParams, alpha, 188 + MAP_COUNT * 64); PH_OFFSET(FrameParams, path
 PH_OFFSET(FrameParams, spectrum, 208 + MAP_COUNT * 64);
 PH_OFFSET(FrameParams, previousCamera, 336 + MAP_COUNT * 64);
 PH_SIZE(SppmFlux, 16); PH_OFFSET(SppmFlux, radius, 12);
-PH_SIZE(SppmPixel, 16 + MAP_COUNT * 16 + 4 * SPPM_COUNT_SLOTS); PH_OFFSET(SppmPixel, maps, 16);
-PH_OFFSET(SppmPixel, count, 16 + MAP_COUNT * 16);
-static_assert(MAP_COUNT <= SPPM_COUNT_SLOTS, "SppmPixel::count holds a slot per map");
+PH_SIZE(SppmPixel, 16 + SURFACE_MAP_COUNT * 16 + 4 * SPPM_COUNT_SLOTS); PH_OFFSET(SppmPixel, maps, 16);
+PH_OFFSET(SppmPixel, count, 16 + SURFACE_MAP_COUNT * 16);
+static_assert(SURFACE_MAP_COUNT <= SPPM_COUNT_SLOTS && MAP_VOLUME == SURFACE_MAP_COUNT, "SppmPixel::count holds a slot per surface map");
 PH_SIZE(Photon, 32); PH_OFFSET(Photon, incoming, 12); PH_OFFSET(Photon, power, 16); PH_OFFSET(Photon, id, 28);
 PH_SIZE(MapPhoton, 16); PH_OFFSET(MapPhoton, power, 12);
 PH_SIZE(HitPoint, 96); PH_OFFSET(HitPoint, aovAlbedo, 80); PH_OFFSET(HitPoint, aovNormal, 92); PH_OFFSET(HitPoint, metallic, 64); PH_OFFSET(HitPoint, channel, 72); PH_OFFSET(HitPoint, roughness, 68); PH_OFFSET(HitPoint, material, 12); PH_OFFSET(HitPoint, weight, 16);

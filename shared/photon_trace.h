@@ -9,6 +9,9 @@
 //
 // What goes where:
 //   caustic map: L S+ D paths (light, one or more mirror/glass bounces, then a diffuse surface).
+//   volume map:  every scattering in a participating medium (medium.h), from the global pass;
+//                a caustic-pass path that scatters ends there (the global pass has it), and a
+//                path that scattered is no longer a caustic path.
 //   global map:  GLOBAL_DIRECT mode: paths with at least one diffuse bounce before this one,
 //                because the eye pass computes direct light with shadow rays and caustics from the
 //                caustic map; GLOBAL_FINAL_GATHER mode: every diffuse hit, since gather rays need
@@ -24,6 +27,7 @@
 #include "bsdf.h"
 #include "dispersion.h"
 #include "lights.h"
+#include "medium.h"
 #include "surface.h"
 
 PH_NAMESPACE_BEGIN
@@ -32,8 +36,9 @@ struct PhotonPath {
     vec3 origin;
     uint flags;  // PATH_*
     vec3 direction;
-    uint depth;  // surfaces hit so far
+    uint depth;  // surfaces hit and scatterings in media so far
     vec3 power;
+    uint medium; // the Medium it travels through (NONE: none)
     Rng rng;
 };
 
@@ -60,6 +65,7 @@ PH_FN PhotonPath startPhotonPath(BUF_PARAM uint index) {
     path.direction = e.direction;
     path.power = spectralFromRgb(BUF_ARG e.power) / (paths * pickProbability);
     path.depth = 0u;
+    path.medium = BUF(params).scene.medium;
     path.flags = withPathChannel(PATH_ALIVE | PATH_SPECULAR_ONLY | (causticPass ? PATH_CAUSTIC_PASS : 0u), CHANNEL_ALL);
     if (light.type == LIGHT_ENVIRONMENT) {
         path.flags |= PATH_FROM_ENVIRONMENT;
@@ -70,7 +76,48 @@ PH_FN PhotonPath startPhotonPath(BUF_PARAM uint index) {
     return path;
 }
 
-// Follow the photon to its next surface. Fills `photon` and returns STORE_* bits saying which
+// The photon's flight through its medium up to tHit (its next surface, FLOAT_MAX: none). True if
+// it scattered (or ended) there: `store` then says whether `photon` goes to the volume map, and
+// the path has moved on (Henyey–Greenstein, Russian roulette by the flight's weight) or ended.
+// False if it flew through, its power weighted by the transmittance.
+PH_FN bool photonFlight(BUF_PARAM PH_INOUT(PhotonPath) path, float tHit, PH_OUT(Photon) photon, PH_OUT(uint) store) {
+    store = 0u;
+    Medium md = loadMedium(BUF_ARG path.medium);
+    vec2 span = mediumSpan(md, path.origin, path.direction, tHit);
+    if (!(span.x < span.y)) {
+        return false;
+    }
+    FreeFlight flight = sampleFreeFlight(md, span.x, span.y, path.rng);
+    path.power *= flight.weight;
+    if (!flight.scatters) {
+        return false;
+    }
+    if ((path.flags & PATH_CAUSTIC_PASS) != 0u) {
+        path.flags = 0u;
+        return true;
+    }
+    vec3 x = path.origin + path.direction * flight.t;
+    photon.position = x;
+    photon.incoming = octEncode(-path.direction);
+    photon.power = path.power;
+    photon.id = photonId(path.rng.index, path.depth);
+    store = STORE_VOLUME;
+    float survival = min(1.0f, maxComponent(flight.weight));
+    if (path.depth + 1u >= BUF(params).maxPhotonDepth || !(survival > 0.0f) || rngNext(path.rng) >= survival) {
+        path.flags = 0u;
+        return true;
+    }
+    path.power *= 1.0f / survival;
+    float u1 = rngNext(path.rng);
+    float u2 = rngNext(path.rng);
+    path.direction = sampleHenyeyGreenstein(path.direction, md.g, u1, u2);
+    path.origin = x;
+    path.flags &= ~PATH_SPECULAR_ONLY;
+    path.depth += 1u;
+    return true;
+}
+
+// Follow the photon to its next surface or scattering. Fills `photon` and returns STORE_* bits saying which
 // maps it belongs to (0: none), then moves the path on or ends it.
 PH_FN uint photonBounce(BUF_PARAM PH_INOUT(PhotonPath) path, PH_OUT(Photon) photon) {
     Hit hit;
@@ -81,6 +128,12 @@ PH_FN uint photonBounce(BUF_PARAM PH_INOUT(PhotonPath) path, PH_OUT(Photon) phot
         PH_RESERVE_SLOT(BUF(counters)[COUNTER_ENVIRONMENT_PATHS]);
         if (hits) {
             PH_RESERVE_SLOT(BUF(counters)[COUNTER_ENVIRONMENT_HITS]);
+        }
+    }
+    if (path.medium != NONE) {
+        uint store;
+        if (photonFlight(BUF_ARG path, hits ? hit.t : FLOAT_MAX, photon, store)) {
+            return store;
         }
     }
     if (!hits) {
@@ -138,6 +191,7 @@ PH_FN uint photonBounce(BUF_PARAM PH_INOUT(PhotonPath) path, PH_OUT(Photon) phot
     if (bs.lobe != LOBE_SPECULAR) {
         path.flags &= ~PATH_SPECULAR_ONLY;
     }
+    path.medium = mediumAcross(BUF_ARG path.medium, m, hit.kind, hit.normal, -path.direction, bs.direction);
     path.origin = offsetRayOrigin(hit.position, hit.normal, bs.direction);
     path.direction = bs.direction;
     path.depth += 1u;
@@ -166,6 +220,9 @@ PH_FN void tracePhotonPath(BUF_PARAM uint index) {
         }
         if ((store & STORE_CAUSTIC) != 0u) {
             appendPhoton(BUF_ARG MAP_CAUSTIC, photon);
+        }
+        if ((store & STORE_VOLUME) != 0u) {
+            appendPhoton(BUF_ARG MAP_VOLUME, photon);
         }
     }
 }

@@ -28,7 +28,7 @@ PH_NAMESPACE_BEGIN
 PH_FN void reprojectSave(BUF_PARAM uint pixel) {
     if (BUF(params).estimator == ESTIMATOR_SPPM) {
         BUF(history)[pixel].sppm.direct = BUF(sppmPixels)[pixel].direct;
-        for (uint m = 0u; m < MAP_COUNT; ++m) {
+        for (uint m = 0u; m < SURFACE_MAP_COUNT; ++m) {
             BUF(history)[pixel].sppm.maps[m].flux = BUF(sppmPixels)[pixel].maps[m].flux;
             BUF(history)[pixel].sppm.maps[m].radius = BUF(sppmPixels)[pixel].maps[m].radius;
             BUF(history)[pixel].sppm.count[m] = BUF(sppmPixels)[pixel].count[m];
@@ -129,10 +129,10 @@ PH_FN void reprojectRestore(BUF_PARAM uint pixel) {
     PixelAov a = emptyPixelAov();
     vec4 mean = vec4(0.0f);  // the running mean (not named after its buffer: GLSL would take it for it)
     vec3 direct = vec3(0.0f);
-    vec3 radiance[MAP_COUNT];
-    float radius[MAP_COUNT];
-    float count[MAP_COUNT];
-    for (uint m = 0u; m < MAP_COUNT; ++m) {
+    vec3 radiance[SURFACE_MAP_COUNT];
+    float radius[SURFACE_MAP_COUNT];
+    float count[SURFACE_MAP_COUNT];
+    for (uint m = 0u; m < SURFACE_MAP_COUNT; ++m) {
         radiance[m] = vec3(0.0f);
         radius[m] = 0.0f;
         count[m] = 0.0f;
@@ -168,7 +168,7 @@ PH_FN void reprojectRestore(BUF_PARAM uint pixel) {
         mean += w * BUF(history)[s].accumulation;
         if (sppm) {
             direct += w * BUF(history)[s].sppm.direct;
-            for (uint m = 0u; m < MAP_COUNT; ++m) {
+            for (uint m = 0u; m < SURFACE_MAP_COUNT; ++m) {
                 float r = BUF(history)[s].sppm.maps[m].radius;
                 vec3 flux = BUF(history)[s].sppm.maps[m].flux;
                 radiance[m] += w * (r > 0.0f ? flux * (INV_PI / (b.frames * r * r)) : vec3(0.0f));
@@ -186,7 +186,7 @@ PH_FN void reprojectRestore(BUF_PARAM uint pixel) {
     // Catmull-Rom's negative lobes can overshoot below zero beside an edge of light.
     if (sppm) {
         BUF(sppmPixels)[pixel].direct = max(direct * inverse, vec3(0.0f));
-        for (uint m = 0u; m < MAP_COUNT; ++m) {
+        for (uint m = 0u; m < SURFACE_MAP_COUNT; ++m) {
             float r = max(radius[m] * inverse, 0.0f);
             BUF(sppmPixels)[pixel].maps[m].flux = max(radiance[m] * inverse, vec3(0.0f)) * (k * PI * r * r);
             BUF(sppmPixels)[pixel].maps[m].radius = r;

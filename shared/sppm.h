@@ -41,7 +41,7 @@ PH_FN SppmPixel emptySppmPixel() {
     SppmPixel s;
     s.direct = vec3(0.0f);
     s.pad0 = 0.0f;
-    for (uint m = 0u; m < MAP_COUNT; ++m) {
+    for (uint m = 0u; m < SURFACE_MAP_COUNT; ++m) {
         s.maps[m].flux = vec3(0.0f);
         s.maps[m].radius = 0.0f;
     }
@@ -189,7 +189,7 @@ PH_FN vec4 gatherSppm(BUF_PARAM uint pixel, bool start) {
         Rng rng = rngCreate(pixel, BUF(params).frameIndex, BUF(params).seed, STREAM_GATHER);
         float u = rngNext(rng);
         vec3 shown = vec3(0.0f);
-        for (uint m = 0u; m < MAP_COUNT; ++m) {
+        for (uint m = 0u; m < SURFACE_MAP_COUNT; ++m) {
             vec3 estimate = gatherSppmMap(BUF_ARG pixel, m, u, start);
             shown += viewShowsMap(view, m) ? estimate : vec3(0.0f);
             caustic += m == MAP_CAUSTIC && viewShowsMap(view, m) ? luminanceOf(estimate) : 0.0f;
@@ -203,7 +203,7 @@ PH_FN vec4 gatherSppm(BUF_PARAM uint pixel, bool start) {
 PH_FN vec3 sppmRadiance(PH_IN(SppmPixel) state, uint frames, uint view) {
     vec3 radiance = viewShowsDirect(view) ? state.direct : vec3(0.0f);
     float k = float(frames);
-    for (uint m = 0u; m < MAP_COUNT; ++m) {
+    for (uint m = 0u; m < SURFACE_MAP_COUNT; ++m) {
         float r = state.maps[m].radius;
         if (viewShowsMap(view, m) && r > 0.0f) {
             radiance += state.maps[m].flux * (INV_PI / (k * r * r));

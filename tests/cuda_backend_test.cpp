@@ -232,6 +232,16 @@ TEST_F(CudaVsCpu, MeshScenesInTheParityBuild) {
     }
 }
 
+// Participating media: free flights, the volume map and the beam estimate, bit for bit in the
+// parity build, within 0.5% in the fast one.
+TEST_F(CudaVsCpu, MediaInTheParityBuild) {
+    Scene scene = loadSceneFile(test::scenesDir() + "/fog.json");
+    RenderSettings s = small();
+    s.photons = 30000;
+    compare(scene, s, "cuda-parity-fog", true);
+    compare(scene, s, "cuda-fast-fog", false);
+}
+
 TEST_F(CudaVsCpu, OverflowingPhotonMapGrowsAndTheFirstFrameIsRedone) {
     Scene scene = test::overflowingScene();
     RenderSettings s = test::overflowingSettings(test::sizedSettings({}, 32, 32, 20000));

@@ -179,7 +179,7 @@ TEST(DirectLight, AreaLightsDoNotShadowThemselvesAtGrazingAngles) {
         for (float z : {-2.0f, -8.0f, -20.0f, -60.0f}) {
             Rng rng = rngCreate(1u, 0u, 1u, STREAM_CAMERA);
             vec3 x(0.5f, 0.0f, z);
-            vec3 lit = directLight(sb.bindings, x, vec3(0, 1, 0), vec3(0, 1, 0), vec3(0, 1, 0), sb.scene.materials[floor], rng);
+            vec3 lit = directLight(sb.bindings, x, vec3(0, 1, 0), vec3(0, 1, 0), vec3(0, 1, 0), sb.scene.materials[floor], NONE, rng);
             EXPECT_GT(lit.x, 0.0f) << (kind == 0 ? "quad" : "sphere") << " light: floor at z = " << z << " sees none";
         }
     }

@@ -42,6 +42,17 @@ std::uint32_t sppmPasses(std::uint32_t paths) {
     return std::clamp<std::uint32_t>((paths + SPPM_BATCH_PATHS / 2) / SPPM_BATCH_PATHS, 1u, SPPM_BATCHES_MAX);
 }
 
+// The volume map's first beam radius, whatever the estimator: its footprints at the median
+// footprint (the beam's disc lies across the camera ray, so a pixel's width is its scale), or its
+// share of the fallback. Its frames then shrink it by Knaus and Zwicker's schedule (frame()).
+float firstBeamRadius(const RenderSettings& settings, const Footprints& footprints, float fallback) {
+    float given = mapRadius(settings, MAP_VOLUME);
+    if (given > 0.0f) {
+        return given;
+    }
+    return footprints.any ? kAutoRadiusFootprints[MAP_VOLUME] * footprints.median : kFallbackShare[MAP_VOLUME] * fallback;
+}
+
 }  // namespace
 
 FrameRadii firstFrameRadii(const Scene& scene, const RenderSettings& settings, const Footprints& footprints,
@@ -49,16 +60,19 @@ FrameRadii firstFrameRadii(const Scene& scene, const RenderSettings& settings, c
     FrameRadii r;
     // Photons of each map per frame: the caustic map's come from the caustic pass, or are the few
     // of the global pass that make caustic paths.
-    std::uint32_t paths[MAP_COUNT] = {budget.globalPaths, budget.splitCaustics ? budget.causticPaths : budget.globalPaths};
+    // The volume map's come from the global pass.
+    std::uint32_t paths[MAP_COUNT] = {budget.globalPaths, budget.splitCaustics ? budget.causticPaths : budget.globalPaths,
+                                      budget.globalPaths};
     double photons[MAP_COUNT] = {double(budget.globalPaths),
-                                 budget.splitCaustics ? double(budget.causticPaths) : 0.1 * budget.globalPaths};
+                                 budget.splitCaustics ? double(budget.causticPaths) : 0.1 * budget.globalPaths,
+                                 double(budget.globalPaths)};
     for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
         r.sppm[m].batches = sppmPasses(paths[m]);
     }
     float fallback = 0.01f * scene.diagonal();
     if (settings.estimator == Estimator::Sppm) {
         double pixels = double(settings.width) * double(settings.height);
-        for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
+        for (std::uint32_t m = 0; m < SURFACE_MAP_COUNT; ++m) {
             float given = mapRadius(settings, m);
             double perPixel = std::max(photons[m], 1.0) / pixels;
             double f = std::sqrt(double(kSppmFirstPhotons[m]) / (3.14159265358979 * perPixel));
@@ -69,9 +83,10 @@ FrameRadii firstFrameRadii(const Scene& scene, const RenderSettings& settings, c
             float unseen = m == MAP_GLOBAL ? fallback : kFallbackShare[m] * fallback;
             r.radius[m] = given > 0.0f ? given : footprints.any ? footprints.median * r.sppm[m].firstFootprints : unseen;
         }
+        r.radius[MAP_VOLUME] = firstBeamRadius(settings, footprints, fallback);
         return r;
     }
-    for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
+    for (std::uint32_t m = 0; m < SURFACE_MAP_COUNT; ++m) {
         float given = mapRadius(settings, m);
         // Without footprints a map falls back to its share of the global map's radius.
         float unseen = m == MAP_GLOBAL ? fallback : kFallbackShare[m] * r.radius[MAP_GLOBAL];
@@ -88,16 +103,20 @@ FrameRadii firstFrameRadii(const Scene& scene, const RenderSettings& settings, c
             }
         }
     }
+    r.radius[MAP_VOLUME] = firstBeamRadius(settings, footprints, fallback);
     return r;
 }
 
 FrameRadii EstimatorPolicy::frame(const RenderSettings& settings, std::uint32_t accumulated) {
     switch (settings.estimator) {
-        case Estimator::Sppm:
+        case Estimator::Sppm: {
             if (accumulated == 0) {
                 current_ = first_;
             }
-            return current_;
+            FrameRadii r = current_;
+            r.radius[MAP_VOLUME] = progressiveRadius(first_.radius[MAP_VOLUME], settings.alpha, accumulated);
+            return r;
+        }
         case Estimator::Progressive: {
             FrameRadii r = first_;
             for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
@@ -107,7 +126,11 @@ FrameRadii EstimatorPolicy::frame(const RenderSettings& settings, std::uint32_t 
         }
         case Estimator::Cell:
         case Estimator::Radius:
-        case Estimator::Knn: return first_;
+        case Estimator::Knn: {
+            FrameRadii r = first_;
+            r.radius[MAP_VOLUME] = progressiveRadius(first_.radius[MAP_VOLUME], settings.alpha, accumulated);
+            return r;
+        }
     }
     throw std::logic_error("EstimatorPolicy: unknown estimator " + std::to_string(int(settings.estimator)));
 }
@@ -118,7 +141,7 @@ void EstimatorPolicy::observe(const RenderSettings& settings, const std::uint32_
     }
     // The next frame's cells follow the median radius of the pixels that have photons, and the
     // largest (sppmCellRadius).
-    for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
+    for (std::uint32_t m = 0; m < SURFACE_MAP_COUNT; ++m) {
         float largest;
         std::memcpy(&largest, &counters[COUNTER_SPPM_RADIUS + m], sizeof largest);
         float r = sppmCellRadius(counters + COUNTER_SPPM_HISTOGRAM + m * SPPM_RADIUS_BINS, largest);

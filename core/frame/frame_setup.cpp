@@ -42,6 +42,8 @@ PhotonBudget planPhotons(const Scene& scene, const RenderSettings& settings) {
     } else {
         b.capacity[MAP_CAUSTIC] = scene.makesCausticPaths() ? b.globalPaths : 0u;
     }
+    // A global path scatters in media at most once per bounce, as it stores on surfaces.
+    b.capacity[MAP_VOLUME] = scene.media.empty() ? 0u : b.capacity[MAP_GLOBAL];
     for (std::uint32_t map = 0; map < MAP_COUNT; ++map) {
         if (settings.grid == GridKind::Bounded) {
             std::uint64_t k = settings.gridResolution;
@@ -68,6 +70,7 @@ FrameParams makeFrameParams(const Scene& scene, const CameraDesc& camera, const 
     info.linearCount = linear ? static_cast<std::uint32_t>(scene.primitiveRefs.size()) : 0u;
     info.infiniteLight = 0u;  // the scene's one, its environment (Scene::finalize)
     info.environmentLight = scene.environmentLight;
+    info.medium = scene.medium;
 
     glm::vec3 extent = scene.boundsMax - scene.boundsMin;
     float cube = std::max({extent.x, extent.y, extent.z});

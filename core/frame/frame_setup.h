@@ -12,10 +12,10 @@
 
 namespace photon {
 
-// Capacities and cells of each map. A map holds at most kMapCapacityMax photons (2^31 - 1, the
-// planning cap before the maps were indexed), so that the offsets into the photon arrays of every
-// map together stay within 32 bits; a request that large fails the memory check of most GPUs.
-inline constexpr std::uint32_t kMapCapacityMax = (1u << 31) - 1u;
+// Capacities and cells of each map. A map holds at most kMapCapacityMax photons (a share of 2^32),
+// so that the offsets into the photon arrays of every map together stay within 32 bits; a request
+// that large fails the memory check of most GPUs.
+inline constexpr std::uint32_t kMapCapacityMax = std::uint32_t((std::uint64_t(1) << 32) / MAP_COUNT - 1u);
 static_assert(std::uint64_t(kMapCapacityMax) * MAP_COUNT < (std::uint64_t(1) << 32), "photon offsets fit 32 bits");
 
 struct PhotonBudget {

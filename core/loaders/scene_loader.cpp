@@ -20,6 +20,7 @@
 #include "core/loaders/environment_loader.h"
 #include "core/loaders/json_node.h"
 #include "core/loaders/model_loader.h"
+#include "core/loaders/scene_media.h"
 #include "core/scene/sky_model.h"
 #include "core/settings/setting_specs.h"
 #include "core/system/error.h"
@@ -84,7 +85,7 @@ Material readSurface(const Node& node) {
         return makeMirror(node.has("reflectance") ? node["reflectance"].rgb(kUnit) : glm::vec3(1.0f));
     }
     if (type == "glass") {
-        node.allowKeys({"type", "emission", "ior", "tint", "abbe"});
+        node.allowKeys({"type", "emission", "ior", "tint", "abbe", "medium"});
         float ior = node.has("ior") ? node["ior"].number(kPositive) : 1.5f;
         Material m = makeGlass(ior, node.has("tint") ? node["tint"].rgb(kUnit) : glm::vec3(1.0f));
         m.dispersion = readDispersion(node);
@@ -116,7 +117,7 @@ Material readSurface(const Node& node) {
     if (type == "pbr") {
         // glTF's metallic-roughness model (shared/pbr.h), with transmission and a volume.
         node.allowKeys({"type", "emission", "base_color", "metallic", "roughness", "transmission", "ior", "thin_walled",
-                        "attenuation_color", "attenuation_distance", "abbe"});
+                        "attenuation_color", "attenuation_distance", "abbe", "medium"});
         Material m = makePbr(node["base_color"].rgb(kUnit), node.has("metallic") ? node["metallic"].number(kUnit) : 0.0f,
                              node.has("roughness") ? node["roughness"].number(kUnit) : 0.5f);
         if (node.has("transmission")) {
@@ -152,14 +153,22 @@ Material readMaterial(const Node& node) {
     return m;
 }
 
-void readMaterials(Scene& scene, const Node& node) {
+void readMaterials(Scene& scene, const Node& node, const MediaByName& media) {
     for (const auto& [name, material] : node.members()) {
         bool reserved = name.compare(0, 5, "light") == 0 && name.size() > 5 &&
                         std::isdigit(static_cast<unsigned char>(name[5]));
         if (reserved) {
             material.fail("names starting with 'light' and a digit are reserved for the emitters of area lights");
         }
-        scene.addMaterial(name, readMaterial(material));
+        Material m = readMaterial(material);
+        if (material.has("medium")) {
+            // Inside a closed object of this material (shared/medium.h); its absorption there.
+            if (m.attenuation != glm::vec3(0.0f)) {
+                material["medium"].fail("the material has attenuation_color too: give the absorption in the medium");
+            }
+            m.medium = readMaterialMedium(scene, material["medium"], media);
+        }
+        scene.addMaterial(name, m);
     }
 }
 
@@ -529,7 +538,7 @@ Scene loadSceneJson(const std::string& text, const std::string& sourceName, cons
                     const FileReader& read, const PathPolicy& paths) {
     const json document = parseJson(text, sourceName);
     const Node root(document, "", sourceName);
-    root.allowKeys({"name", "camera", "background", "materials", "objects", "lights", "render"});
+    root.allowKeys({"name", "camera", "background", "media", "medium", "materials", "objects", "lights", "render"});
 
     Scene scene;
     if (root.has("name")) {
@@ -539,7 +548,11 @@ Scene loadSceneJson(const std::string& text, const std::string& sourceName, cons
     if (root.has("background")) {
         scene.setBackground(root["background"].rgb(kNonNegative));
     }
-    readMaterials(scene, root["materials"]);
+    MediaByName media = root.has("media") ? readMedia(root["media"]) : MediaByName{};
+    readMaterials(scene, root["materials"], media);
+    if (root.has("medium")) {
+        readSceneMedium(scene, root["medium"], media);
+    }
     for (const Node& object : root["objects"].elements()) {
         readObject(scene, object, folder, read, paths);
     }

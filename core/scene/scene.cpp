@@ -31,6 +31,7 @@ Material blankMaterial(std::uint32_t type) {
     m.metallicRoughnessTexture = NONE;
     m.normalTexture = NONE;
     m.emissionTexture = NONE;
+    m.medium = NONE;
     m.ior = 1.0f;
     m.alpha = 1.0f;
     m.alphaCutoff = 0.5f;
@@ -139,6 +140,13 @@ std::uint32_t Scene::addMaterial(const std::string& materialName, const Material
     materialNames.push_back(materialName);
     return static_cast<std::uint32_t>(materials.size() - 1);
 }
+
+std::uint32_t Scene::addMedium(const Medium& m) {
+    media.push_back(m);
+    return static_cast<std::uint32_t>(media.size() - 1);
+}
+
+void Scene::fillWithMedium(std::uint32_t index) { medium = index; }
 
 std::uint32_t Scene::findMaterial(const std::string& materialName) const {
     auto it = std::find(materialNames.begin(), materialNames.end(), materialName);

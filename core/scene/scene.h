@@ -56,6 +56,9 @@ struct TriangleObject {
 // areas (a span squared) stay within floats. The loaders refuse wider models and scenes by name.
 inline constexpr double kMaxSceneSpan = 1e15;
 
+// The box of a medium that no box bounds (an object's: the object bounds it).
+inline constexpr float kMediumUnbounded = 1e30f;
+
 // "1e+30 wide (z from 0 to 1e+30)": the widest axis of a box, for messages.
 std::string describeSpan(glm::vec3 lo, glm::vec3 hi);
 double widestSpan(glm::vec3 lo, glm::vec3 hi);
@@ -75,6 +78,7 @@ struct Scene {
     glm::dvec3 environmentIntegral{0.0};  // ∫ map texel dω (setEnvironment)
     double environmentBuildSeconds = 0.0;  // setEnvironment's time for the map's texels and cdfs
     std::uint32_t environmentLight = NONE;  // by finalize(): the environment's index in lights, if it lights
+    std::uint32_t medium = NONE;  // the medium the camera and lights are in, within its box (media)
     glm::vec3 boundsMin{0.0f};  // by finalize()
     glm::vec3 boundsMax{0.0f};
     RenderSettings render;
@@ -95,6 +99,12 @@ struct Scene {
     // The mesh's triangles, transformed (normals by the inverse transpose; a mirroring transform
     // keeps each triangle's front), as one object. Triangles without area are dropped and counted.
     void addMesh(const Mesh& mesh, const glm::mat4& transform);
+    // A homogeneous participating medium (shared/medium.h); its index, for Material::medium or
+    // fillWithMedium.
+    std::uint32_t addMedium(const Medium& m);
+    // The scene is filled with medium `index` within its box; an unbounded box becomes the scene's
+    // bounds (finalize()), so that photons and rays leaving the scene leave the medium too.
+    void fillWithMedium(std::uint32_t index);
     // A texture of linear RGBA texels (16 bits a channel, packed as in shared/texture.h); its index.
     std::uint32_t addTexture(std::uint32_t width, std::uint32_t height, std::vector<glm::uvec2> linearTexels,
                              std::uint32_t wrapS, std::uint32_t wrapT);

@@ -168,6 +168,20 @@ void computeBounds(Scene& scene) {
     scene.boundsMax = hi;
 }
 
+// The scene's medium fills its bounds unless it was given a box; a box that misses the scene is
+// the scene file's mistake, which a render would show as no medium at all.
+void boundSceneMedium(Scene& scene) {
+    if (scene.medium == NONE) {
+        return;
+    }
+    Medium& md = scene.media[scene.medium];
+    if (md.lower.x <= -kMediumUnbounded) {
+        glm::vec3 margin = 1e-3f * (scene.boundsMax - scene.boundsMin) + glm::vec3(1e-6f);
+        md.lower = scene.boundsMin - margin;
+        md.upper = scene.boundsMax + margin;
+    }
+}
+
 void sizeDirectionalLights(Scene& scene) {
     glm::vec3 lo = scene.boundsMin;
     glm::vec3 hi = scene.boundsMax;
@@ -325,6 +339,7 @@ void Scene::finalize() {
     checkReferences(*this);
     flagTriangles(*this);
     computeBounds(*this);
+    boundSceneMedium(*this);
     sizeDirectionalLights(*this);
     gatherEmissiveTriangles(*this);
     placeEnvironment(*this);

@@ -66,6 +66,8 @@ std::vector<SettingSpec> makeSpecs() {
         number("radius", "--radius", "Global map query radius (scene units; omit for automatic)", &R::radius, kRadius),
         number("caustic_radius", "--caustic-radius", "Caustic map query radius (omit for automatic)", &R::causticRadius,
                kRadius),
+        number("volume_radius", "--volume-radius", "Volume map beam radius in media (omit for automatic)",
+               &R::volumeRadius, kRadius),
         integer("k", "--k", "Photons of the k-nearest estimator", &R::k, 1, KNN_MAX),
         number("alpha", "--alpha", "Progressive radius reduction alpha", &R::alpha, {0.01, 0.99}),
         choice("global", "--global", "Indirect light from the global map", &R::globalMode),

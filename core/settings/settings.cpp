@@ -73,10 +73,11 @@ std::string list(const Names<E, N>& names) {
 }  // namespace
 
 float mapRadius(const RenderSettings& settings, std::uint32_t map) {
-    PH_COVERS(MAP_COUNT, 2u);
+    PH_COVERS(MAP_COUNT, 3u);
     switch (map) {
         case MAP_GLOBAL: return settings.radius;
         case MAP_CAUSTIC: return settings.causticRadius;
+        case MAP_VOLUME: return settings.volumeRadius;
     }
     throw std::logic_error("mapRadius: no photon map " + std::to_string(map));
 }

@@ -51,6 +51,7 @@ struct RenderSettings {
     Kernel kernel = Kernel::Epanechnikov;
     float radius = 0.0f;                  // global map query radius; 0: automatic (estimator_policy.h)
     float causticRadius = 0.0f;           // caustic map query radius; 0: automatic
+    float volumeRadius = 0.0f;            // volume map beam radius (shared/volume_estimate.h); 0: automatic
     std::uint32_t k = 50;                 // photons of the k-nearest estimator
     float alpha = 2.0f / 3.0f;            // progressive radius reduction (Knaus & Zwicker)
     GlobalMode globalMode = GlobalMode::Direct;
