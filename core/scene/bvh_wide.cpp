@@ -38,6 +38,14 @@ struct Child {
     std::uint32_t count;  // 0: inner
 };
 
+// Reads the binary nodes as one array would hold them (BinaryBvh::node), remembering the subtree
+// it read last.
+struct BinaryReader {
+    const BinaryBvh& tree;
+    std::size_t hint = 0;
+    BvhNode operator[](std::uint32_t g) { return tree.node(g, hint); }
+};
+
 double surface(glm::vec3 lo, glm::vec3 hi) {
     glm::dvec3 d = glm::max(glm::dvec3(hi) - glm::dvec3(lo), glm::dvec3(0.0));
     return 2.0 * (d.x * d.y + d.y * d.z + d.z * d.x);
@@ -57,7 +65,7 @@ int binaryChildren(const BvhNode& n, Child* out) {
 
 // The children of binary node `b` as a wide node takes them (the largest inner one opened until
 // there are BVH_WIDTH); returns how many.
-int collapse(const std::vector<BvhNode>& binary, std::uint32_t b, Child* children) {
+int collapse(BinaryReader& binary, std::uint32_t b, Child* children) {
     int k = binaryChildren(binary[b], children);
     while (k < int(BVH_WIDTH)) {
         int largest = -1;
@@ -167,7 +175,7 @@ struct Pending {
 
 // Makes wide node `p` into nodes[p.wide], placing its inner children at the end of `nodes` and
 // adding them to `queue`.
-void makeNode(const std::vector<BvhNode>& binary, Pending p, std::vector<WideBvhNode>& nodes, std::vector<Pending>& queue,
+void makeNode(BinaryReader& binary, Pending p, std::vector<WideBvhNode>& nodes, std::vector<Pending>& queue,
               WideMeasure& m) {
     Child children[BVH_WIDTH];
     int k = collapse(binary, p.binary, children);
@@ -210,18 +218,19 @@ constexpr std::size_t kSubtrees = 1024;
 
 }  // namespace
 
-void widenBvh(const std::vector<BvhNode>& binary, std::vector<WideBvhNode>& wide, BvhStats& stats) {
+void widenBvh(const BinaryBvh& tree, std::vector<WideBvhNode>& wide, BvhStats& stats) {
     Clock::time_point start = Clock::now();
     wide.clear();
     stats.wideNodes = 0;
     stats.wideDepth = 0;
     stats.stack = 0;
     stats.wideSahCost = 0.0;
-    if (binary.empty()) {
+    if (tree.top.empty() && tree.subtrees.empty()) {
         stats.widenSeconds = std::chrono::duration<double>(Clock::now() - start).count();
         return;
     }
     // The top levels, breadth first, until enough nodes are waiting (a number fixed by the tree).
+    BinaryReader binary{tree};
     WideMeasure top;
     std::vector<Pending> queue{Pending{0, 0, 0, 1}};
     wide.emplace_back();
@@ -238,6 +247,7 @@ void widenBvh(const std::vector<BvhNode>& binary, std::vector<WideBvhNode>& wide
     std::uint32_t count = std::uint32_t(wide.size());
     // A subtree's root takes the place that the top levels gave it; its descendants follow.
     parallelFor(roots.size(), 1, [&](std::size_t a, std::size_t b) {
+        BinaryReader reader{tree};
         std::vector<Pending> local;
         for (std::size_t r = a; r < b; ++r) {
             std::vector<WideBvhNode>& nodes = subtrees[r];
@@ -245,7 +255,7 @@ void widenBvh(const std::vector<BvhNode>& binary, std::vector<WideBvhNode>& wide
             local.push_back(Pending{roots[r].binary, 0, roots[r].stack, roots[r].depth});
             nodes.emplace_back();
             for (std::size_t i = 0; i < local.size(); ++i) {
-                makeNode(binary, local[i], nodes, local, measures[r]);
+                makeNode(reader, local[i], nodes, local, measures[r]);
             }
         }
     });
@@ -300,7 +310,7 @@ void widenBvh(const std::vector<BvhNode>& binary, std::vector<WideBvhNode>& wide
 }
 
 BvhStats buildBvh(const Scene& scene, std::vector<WideBvhNode>& nodes, std::vector<std::uint32_t>& refs) {
-    std::vector<BvhNode> binary;
+    BinaryBvh binary;
     BvhStats stats = buildBinaryBvh(scene, binary, refs);
     widenBvh(binary, nodes, stats);
     stats.buildSeconds += stats.widenSeconds;
