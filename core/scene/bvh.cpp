@@ -33,13 +33,10 @@
 
 #include <algorithm>
 #include <chrono>
-#include <exception>
-#include <memory>
-#include <system_error>
-#include <thread>
 
 #include "core/scene/bvh_build.h"
 #include "core/scene/scene.h"
+#include "core/scene/sized_on_helper.h"
 #include "core/system/error.h"
 #include "core/system/parallel.h"
 #include "shared/intersect.h"
@@ -51,49 +48,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
-// The reference array, sized on a helper thread while the build starts: a vector's resize
-// zeroes its memory on one thread, and the first touch of fresh memory is a page fault per 4 KiB.
-// It serves the top levels' partitions as scratch before the subtrees write the references.
-class Outputs {
-public:
-    Outputs(std::vector<std::uint32_t>& refs, std::size_t primitives) : refs_(refs) {
-        auto work = [this, primitives] {
-            try {
-                refs_.resize(primitives);
-            } catch (...) {
-                refsFailure_ = std::current_exception();
-            }
-        };
-        try {
-            helper_ = std::thread(work);
-        } catch (const std::system_error&) {
-            work();  // no thread to spare: here and now
-        }
-    }
-    ~Outputs() {
-        if (helper_.joinable()) {
-            helper_.join();
-        }
-    }
-    Outputs(const Outputs&) = delete;
-    Outputs& operator=(const Outputs&) = delete;
-
-    std::uint32_t* refs() {
-        if (helper_.joinable()) {
-            helper_.join();
-        }
-        if (refsFailure_) {
-            std::rethrow_exception(refsFailure_);
-        }
-        return refs_.data();
-    }
-
-private:
-    std::vector<std::uint32_t>& refs_;
-    std::thread helper_;
-    std::exception_ptr refsFailure_;
-};
 
 // Phase 1: every primitive's doubled centroid and the identity index, in fixed chunks on every
 // thread (the arrays' memory is first touched here, by the threads that fill it).
@@ -132,7 +86,9 @@ BvhStats buildBinaryBvh(const Scene& scene, BinaryBvh& binary, std::vector<std::
         return stats;
     }
     const RefMap refMap{std::uint32_t(scene.spheres.size()), std::uint32_t(scene.spheres.size() + scene.quads.size())};
-    Outputs outputs(refs, total);
+    // The references, sized while the centroids are made; the top levels' partitions pass
+    // through them before the subtrees write them.
+    SizedOnHelper<std::uint32_t> sizedRefs(refs, total, total);
 
     Primitives p{scene, refMap, {}, {}};
     prepare(p, total);
@@ -140,12 +96,12 @@ BvhStats buildBinaryBvh(const Scene& scene, BinaryBvh& binary, std::vector<std::
 
     Clock::time_point topStart = Clock::now();
     std::vector<TopNode> top;
-    std::vector<Subtree> subtrees = buildTopLevels(p, std::uint32_t(total), outputs.refs(), top);
+    std::vector<Subtree> subtrees = buildTopLevels(p, std::uint32_t(total), sizedRefs.get().data(), top);
     stats.topSeconds = secondsSince(topStart);
 
     // The subtrees, largest first; each into its own nodes.
     Clock::time_point subtreeStart = Clock::now();
-    buildSubtrees(p, outputs.refs(), subtrees);
+    buildSubtrees(p, sizedRefs.get().data(), subtrees);
     stats.subtreeSeconds = secondsSince(subtreeStart);
 
     // The top nodes, their boxes from their children's (children come after their parents); each
