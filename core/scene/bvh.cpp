@@ -19,8 +19,9 @@
 //    the union of their bins (or, for a sampled node, measured as the partition settles them),
 //    their centroids' bounds are measured as it settles them. A node of 5 to 8 primitives becomes
 //    two leaves, cut where its sorted centroids give the lowest SAH cost.
-// 4. Flatten: the top nodes, then every subtree's nodes in the order the subtrees were made, their
-//    child indices offset, into the shared layout.
+// 4. Gather: the top nodes get their boxes; every subtree's nodes are numbered after the earlier
+//    subtrees' but stay in the subtree's own array (BinaryBvh), where the collapse to the wide
+//    layout (bvh_wide.cpp) reads them: the binary tree is never copied into one array.
 //
 // The output depends on the scene alone, never on the thread count or on timing: chunks and
 // subtrees are cut by size, every chunk's result has its own slot, bins and boxes merge by min and
@@ -32,15 +33,10 @@
 
 #include <algorithm>
 #include <chrono>
-#include <condition_variable>
-#include <exception>
-#include <memory>
-#include <mutex>
-#include <system_error>
-#include <thread>
 
 #include "core/scene/bvh_build.h"
 #include "core/scene/scene.h"
+#include "core/scene/sized_on_helper.h"
 #include "core/system/error.h"
 #include "core/system/parallel.h"
 #include "shared/intersect.h"
@@ -52,77 +48,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
-// The output arrays, sized on a helper thread while the build runs: a vector's resize zeroes its
-// memory on one thread, and the first touch of fresh memory is a page fault per 4 KiB (at 10M
-// triangles 0.06 s for the nodes alone, a tenth of the build, on a 2-core machine). The
-// references are ready for the subtrees, the nodes (as many as a tree of these primitives
-// usually has, 0.3 a primitive; the flatten sizes them exactly) for the flatten.
-class Outputs {
-public:
-    Outputs(std::vector<BvhNode>& nodes, std::vector<std::uint32_t>& refs, std::size_t primitives)
-        : nodes_(nodes), refs_(refs) {
-        nodes.reserve(primitives / 2 + 64);  // more than a tree of leaves of 4 or fewer ever needs
-        std::size_t estimate = primitives * 3 / 10;
-        auto work = [this, primitives, estimate] {
-            try {
-                refs_.resize(primitives);
-            } catch (...) {
-                refsFailure_ = std::current_exception();
-            }
-            {
-                std::lock_guard<std::mutex> lock(mutex_);
-                refsReady_ = true;
-            }
-            ready_.notify_all();
-            try {
-                nodes_.resize(std::min(estimate, nodes_.capacity()));
-            } catch (...) {
-                nodesFailure_ = std::current_exception();
-            }
-        };
-        try {
-            helper_ = std::thread(work);
-        } catch (const std::system_error&) {
-            work();  // no thread to spare: here and now
-        }
-    }
-    ~Outputs() {
-        if (helper_.joinable()) {
-            helper_.join();
-        }
-    }
-    Outputs(const Outputs&) = delete;
-    Outputs& operator=(const Outputs&) = delete;
-
-    std::uint32_t* refs() {
-        std::unique_lock<std::mutex> lock(mutex_);
-        ready_.wait(lock, [this] { return refsReady_; });
-        if (refsFailure_) {
-            std::rethrow_exception(refsFailure_);
-        }
-        return refs_.data();
-    }
-    std::vector<BvhNode>& nodes() {
-        if (helper_.joinable()) {
-            helper_.join();
-        }
-        if (nodesFailure_) {
-            std::rethrow_exception(nodesFailure_);
-        }
-        return nodes_;
-    }
-
-private:
-    std::vector<BvhNode>& nodes_;
-    std::vector<std::uint32_t>& refs_;
-    std::thread helper_;
-    std::mutex mutex_;
-    std::condition_variable ready_;
-    bool refsReady_ = false;
-    std::exception_ptr refsFailure_;
-    std::exception_ptr nodesFailure_;
-};
 
 // Phase 1: every primitive's doubled centroid and the identity index, in fixed chunks on every
 // thread (the arrays' memory is first touched here, by the threads that fill it).
@@ -149,9 +74,9 @@ void prepare(Primitives& p, std::size_t total) {
 
 }  // namespace
 
-BvhStats buildBinaryBvh(const Scene& scene, std::vector<BvhNode>& nodes, std::vector<std::uint32_t>& refs) {
+BvhStats buildBinaryBvh(const Scene& scene, BinaryBvh& binary, std::vector<std::uint32_t>& refs) {
     Clock::time_point start = Clock::now();
-    nodes.clear();
+    binary = BinaryBvh{};
     refs.clear();
     BvhStats stats;
     const std::size_t total = scene.spheres.size() + scene.quads.size() + scene.triangles.size();
@@ -161,7 +86,9 @@ BvhStats buildBinaryBvh(const Scene& scene, std::vector<BvhNode>& nodes, std::ve
         return stats;
     }
     const RefMap refMap{std::uint32_t(scene.spheres.size()), std::uint32_t(scene.spheres.size() + scene.quads.size())};
-    Outputs outputs(nodes, refs, total);
+    // The references, sized while the centroids are made; the top levels' partitions pass
+    // through them before the subtrees write them.
+    SizedOnHelper<std::uint32_t> sizedRefs(refs, total, total);
 
     Primitives p{scene, refMap, {}, {}};
     prepare(p, total);
@@ -169,29 +96,36 @@ BvhStats buildBinaryBvh(const Scene& scene, std::vector<BvhNode>& nodes, std::ve
 
     Clock::time_point topStart = Clock::now();
     std::vector<TopNode> top;
-    std::vector<Subtree> subtrees = buildTopLevels(p, std::uint32_t(total), top);
+    std::vector<Subtree> subtrees = buildTopLevels(p, std::uint32_t(total), sizedRefs.get().data(), top);
     stats.topSeconds = secondsSince(topStart);
 
     // The subtrees, largest first; each into its own nodes.
     Clock::time_point subtreeStart = Clock::now();
-    buildSubtrees(p, outputs.refs(), subtrees);
+    buildSubtrees(p, sizedRefs.get().data(), subtrees);
     stats.subtreeSeconds = secondsSince(subtreeStart);
 
-    // The top nodes first, their boxes from their children's (children come after their
-    // parents), then each subtree's nodes after the earlier subtrees'.
+    // The top nodes, their boxes from their children's (children come after their parents); each
+    // subtree's nodes numbered after the earlier subtrees' (they stay where they were built).
     Clock::time_point flattenStart = Clock::now();
     Measure measure;
-    std::vector<std::uint32_t> offsets(subtrees.size());
+    binary.offsets.resize(subtrees.size());
+    binary.subtrees.resize(subtrees.size());
     auto count = std::uint32_t(top.size());
     for (std::size_t k = 0; k < subtrees.size(); ++k) {
-        offsets[k] = count;
+        binary.offsets[k] = count;
         count += std::uint32_t(subtrees[k].nodes.size());
     }
-    outputs.nodes().resize(count == 0 ? 1 : count);
-    if (count == 0) {
-        // The root is a leaf: an inner root with it as its first child and no second.
-        nodes[0] = emptyNode();
-        fill(nodes[0], false, subtrees[0].box, 0, subtrees[0].count, 0, true, measure);
+    std::vector<BvhNode>& nodes = binary.top;
+    nodes.resize(top.empty() ? 1 : top.size());
+    if (top.empty()) {
+        // The root is a leaf or a subtree: an inner root with it as its first child and no second.
+        const Subtree& s = subtrees[0];
+        if (s.nodes.empty()) {
+            nodes[0] = emptyNode();
+            fill(nodes[0], false, s.box, s.first, s.count, 0, true, measure);
+        } else {
+            nodes.clear();  // the subtree's root is the root
+        }
     } else {
         std::vector<Box> topBoxes(top.size());
         for (std::size_t k = top.size(); k-- > 0;) {
@@ -200,7 +134,7 @@ BvhStats buildBinaryBvh(const Scene& scene, std::vector<BvhNode>& nodes, std::ve
                 std::uint32_t c = top[k].child[side];
                 if (top[k].subtree[side]) {
                     const Subtree& s = subtrees[c];
-                    fill(n, side == 1, s.box, s.first, s.count, offsets[c], s.nodes.empty(), measure);
+                    fill(n, side == 1, s.box, s.first, s.count, binary.offsets[c], s.nodes.empty(), measure);
                     topBoxes[k].grow(s.box);
                 } else {
                     fill(n, side == 1, topBoxes[c], 0, 0, c, false, measure);
@@ -209,21 +143,14 @@ BvhStats buildBinaryBvh(const Scene& scene, std::vector<BvhNode>& nodes, std::ve
             }
             nodes[k] = n;
         }
-        parallelFor(subtrees.size(), 1, [&](std::size_t a, std::size_t b) {
-            for (std::size_t k = a; k < b; ++k) {
-                const std::uint32_t offset = offsets[k];
-                BvhNode* out = nodes.data() + offset;
-                for (BvhNode n : subtrees[k].nodes) {
-                    n.childA += n.countA == 0 && !absent(n.lowerA) ? offset : 0;
-                    n.childB += n.countB == 0 && !absent(n.lowerB) ? offset : 0;
-                    *out++ = n;
-                }
-            }
-        });
+    }
+    for (std::size_t k = 0; k < subtrees.size(); ++k) {
+        binary.subtrees[k] = std::move(subtrees[k].nodes);
     }
     // SAH cost: Σ over inner nodes of area/root area times the cost of a visit, plus Σ over leaves
     // of area/root area times their primitives; the root's own visit included.
-    const BvhNode& r = nodes[0];
+    std::size_t hint = 0;
+    const BvhNode r = binary.node(0, hint);
     glm::vec3 lo = absent(r.lowerB) ? r.lowerA : glm::min(r.lowerA, r.lowerB);
     glm::vec3 hi = absent(r.lowerB) ? r.upperA : glm::max(r.upperA, r.upperB);
     double rootArea = std::max(area(lo, hi), 1e-30);
@@ -240,7 +167,7 @@ BvhStats buildBinaryBvh(const Scene& scene, std::vector<BvhNode>& nodes, std::ve
         stats.depth = std::max(stats.depth, s.measure.depth);
     }
     stats.sahCost = kTraversalCost + sum / rootArea;
-    stats.nodes = std::uint32_t(nodes.size());
+    stats.nodes = count == 0 ? 1 : count;
     stats.flattenSeconds = secondsSince(flattenStart);
     stats.buildSeconds = secondsSince(start);
     return stats;

@@ -9,6 +9,7 @@
 // result depends on the scene alone: the same nodes and references on any number of threads.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -40,8 +41,8 @@ struct BvhStats {
     double wideSahCost = 0.0;      // of the wide tree, over its quantized boxes
     double buildSeconds = 0.0;
     // Where buildSeconds went: the primitives' centroids; the top levels (split across all
-    // threads); the subtrees below them (one thread each); the nodes gathered into their array
-    // and measured; the binary tree collapsed into the wide one.
+    // threads); the subtrees below them (one thread each); the top nodes' boxes and the tree
+    // measured; the binary tree collapsed into the wide one.
     double prepareSeconds = 0.0;
     double topSeconds = 0.0;
     double subtreeSeconds = 0.0;
@@ -49,15 +50,41 @@ struct BvhStats {
     double widenSeconds = 0.0;
 };
 
-// The binary hierarchy of the scene's spheres, quads and triangles into `nodes` and `refs`
+// The binary hierarchy as its build leaves it, never copied into one array: the top levels' nodes,
+// then each subtree's own nodes, whose inner children are numbered from the subtree's first node.
+// Node g of the whole is top[g], or node g − offsets[k] of the last subtree k with offsets[k] ≤ g,
+// its inner children moved by offsets[k] (what one array would hold; the collapse reads it so).
+struct BinaryBvh {
+    std::vector<BvhNode> top;
+    std::vector<std::vector<BvhNode>> subtrees;
+    std::vector<std::uint32_t> offsets;  // each subtree's first node in the whole
+
+    // Node g of the whole; `hint` is the subtree read last, searched for again only when g is
+    // outside it (the collapse reads a subtree's nodes together).
+    BvhNode node(std::uint32_t g, std::size_t& hint) const {
+        if (g < top.size()) {
+            return top[g];
+        }
+        if (hint >= offsets.size() || g < offsets[hint] || g - offsets[hint] >= subtrees[hint].size()) {
+            hint = std::size_t(std::upper_bound(offsets.begin(), offsets.end(), g) - offsets.begin()) - 1;
+        }
+        const std::uint32_t offset = offsets[hint];
+        BvhNode n = subtrees[hint][g - offset];
+        n.childA += n.countA == 0 && n.lowerA.x != FLOAT_MAX ? offset : 0;
+        n.childB += n.countB == 0 && n.lowerB.x != FLOAT_MAX ? offset : 0;
+        return n;
+    }
+};
+
+// The binary hierarchy of the scene's spheres, quads and triangles into `binary` and `refs`
 // (primitive references, kind << 30 | index). Empty outputs when there is no bounded primitive.
-BvhStats buildBinaryBvh(const Scene& scene, std::vector<BvhNode>& nodes, std::vector<std::uint32_t>& refs);
+BvhStats buildBinaryBvh(const Scene& scene, BinaryBvh& binary, std::vector<std::uint32_t>& refs);
 
 // The binary hierarchy collapsed into wide nodes (the root first), each taking the children of
 // its binary node and replacing the largest inner one by its own two until it has four; boxes
 // quantized outwards. Sets the wide fields of `stats`. Throws InputError if the traversal's
 // stack (BVH_STACK_SIZE) could overflow.
-void widenBvh(const std::vector<BvhNode>& binary, std::vector<WideBvhNode>& wide, BvhStats& stats);
+void widenBvh(const BinaryBvh& binary, std::vector<WideBvhNode>& wide, BvhStats& stats);
 
 // The traversed hierarchy: buildBinaryBvh, then widenBvh.
 BvhStats buildBvh(const Scene& scene, std::vector<WideBvhNode>& nodes, std::vector<std::uint32_t>& refs);

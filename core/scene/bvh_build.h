@@ -115,8 +115,10 @@ struct TopNode {
 
 // Phase 2, the top levels (bvh_top_levels.cpp): splits the primitives from the root down, a level
 // at a time on all threads, until every node is a subtree's size; returns the subtrees in the order
-// they were made. Top node k is node k of the hierarchy.
-std::vector<Subtree> buildTopLevels(const Primitives& p, std::uint32_t count, std::vector<TopNode>& nodes);
+// they were made. Top node k is node k of the hierarchy. `scratch` (count entries; the reference
+// array, which the subtrees fill later) holds each level's partitions on their way.
+std::vector<Subtree> buildTopLevels(const Primitives& p, std::uint32_t count, std::uint32_t* scratch,
+                                   std::vector<TopNode>& nodes);
 
 // Phase 3, the subtrees (bvh_subtrees.cpp): builds each subtree whole on one thread, largest
 // first, into its own nodes; leaves' references into `refs`.

@@ -200,9 +200,9 @@ private:
 
 }  // namespace
 
-std::vector<Subtree> buildTopLevels(const Primitives& p, std::uint32_t count, std::vector<TopNode>& nodes) {
-    std::unique_ptr<std::uint32_t[]> scratch(new std::uint32_t[count]);  // of the partitions
-    return TopLevels(p, scratch.get(), subtreeSize(count)).run(count, nodes);
+std::vector<Subtree> buildTopLevels(const Primitives& p, std::uint32_t count, std::uint32_t* scratch,
+                                   std::vector<TopNode>& nodes) {
+    return TopLevels(p, scratch, subtreeSize(count)).run(count, nodes);
 }
 
 }  // namespace photon::bvh_build

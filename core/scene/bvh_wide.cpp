@@ -22,6 +22,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/scene/scene.h"
+#include "core/scene/sized_on_helper.h"
 #include "core/system/error.h"
 #include "core/system/parallel.h"
 
@@ -36,6 +38,14 @@ struct Child {
     glm::vec3 upper;
     std::uint32_t index;  // binary node (inner) or first reference (leaf)
     std::uint32_t count;  // 0: inner
+};
+
+// Reads the binary nodes as one array would hold them (BinaryBvh::node), remembering the subtree
+// it read last.
+struct BinaryReader {
+    const BinaryBvh& tree;
+    std::size_t hint = 0;
+    BvhNode operator[](std::uint32_t g) { return tree.node(g, hint); }
 };
 
 double surface(glm::vec3 lo, glm::vec3 hi) {
@@ -57,7 +67,7 @@ int binaryChildren(const BvhNode& n, Child* out) {
 
 // The children of binary node `b` as a wide node takes them (the largest inner one opened until
 // there are BVH_WIDTH); returns how many.
-int collapse(const std::vector<BvhNode>& binary, std::uint32_t b, Child* children) {
+int collapse(BinaryReader& binary, std::uint32_t b, Child* children) {
     int k = binaryChildren(binary[b], children);
     while (k < int(BVH_WIDTH)) {
         int largest = -1;
@@ -167,7 +177,7 @@ struct Pending {
 
 // Makes wide node `p` into nodes[p.wide], placing its inner children at the end of `nodes` and
 // adding them to `queue`.
-void makeNode(const std::vector<BvhNode>& binary, Pending p, std::vector<WideBvhNode>& nodes, std::vector<Pending>& queue,
+void makeNode(BinaryReader& binary, Pending p, std::vector<WideBvhNode>& nodes, std::vector<Pending>& queue,
               WideMeasure& m) {
     Child children[BVH_WIDTH];
     int k = collapse(binary, p.binary, children);
@@ -210,24 +220,25 @@ constexpr std::size_t kSubtrees = 1024;
 
 }  // namespace
 
-void widenBvh(const std::vector<BvhNode>& binary, std::vector<WideBvhNode>& wide, BvhStats& stats) {
+void widenBvh(const BinaryBvh& tree, std::vector<WideBvhNode>& wide, BvhStats& stats) {
     Clock::time_point start = Clock::now();
-    wide.clear();
     stats.wideNodes = 0;
     stats.wideDepth = 0;
     stats.stack = 0;
     stats.wideSahCost = 0.0;
-    if (binary.empty()) {
+    if (tree.top.empty() && tree.subtrees.empty()) {
+        wide.clear();
         stats.widenSeconds = std::chrono::duration<double>(Clock::now() - start).count();
         return;
     }
     // The top levels, breadth first, until enough nodes are waiting (a number fixed by the tree).
+    BinaryReader binary{tree};
     WideMeasure top;
+    std::vector<WideBvhNode> topNodes(1);
     std::vector<Pending> queue{Pending{0, 0, 0, 1}};
-    wide.emplace_back();
     std::size_t next = 0;
     while (next < queue.size() && queue.size() - next < kSubtrees) {
-        makeNode(binary, queue[next], wide, queue, top);
+        makeNode(binary, queue[next], topNodes, queue, top);
         ++next;
     }
     // The waiting nodes' subtrees, each into its own array, then after the top in order.
@@ -235,25 +246,31 @@ void widenBvh(const std::vector<BvhNode>& binary, std::vector<WideBvhNode>& wide
     std::vector<std::vector<WideBvhNode>> subtrees(roots.size());
     std::vector<WideMeasure> measures(roots.size());
     std::vector<std::uint32_t> offsets(roots.size());
-    std::uint32_t count = std::uint32_t(wide.size());
+    std::uint32_t count = std::uint32_t(topNodes.size());
     // A subtree's root takes the place that the top levels gave it; its descendants follow.
     parallelFor(roots.size(), 1, [&](std::size_t a, std::size_t b) {
+        // Each subtree is made in `built`, whose memory the next reuses (warm, no page faults, no
+        // growing), and kept in an array of its size.
+        BinaryReader reader{tree};
         std::vector<Pending> local;
+        std::vector<WideBvhNode> built;
         for (std::size_t r = a; r < b; ++r) {
-            std::vector<WideBvhNode>& nodes = subtrees[r];
             local.clear();
             local.push_back(Pending{roots[r].binary, 0, roots[r].stack, roots[r].depth});
-            nodes.emplace_back();
+            built.assign(1, WideBvhNode{});
             for (std::size_t i = 0; i < local.size(); ++i) {
-                makeNode(binary, local[i], nodes, local, measures[r]);
+                makeNode(reader, local[i], built, local, measures[r]);
             }
+            subtrees[r].assign(built.begin(), built.end());
         }
     });
     for (std::size_t r = 0; r < roots.size(); ++r) {
         offsets[r] = count;
         count += std::uint32_t(subtrees[r].size()) - 1;
     }
+    // `wide` may come sized already (buildBvh has a helper thread size it during the binary build).
     wide.resize(count);
+    std::copy(topNodes.begin(), topNodes.end(), wide.begin());
     parallelFor(roots.size(), 1, [&](std::size_t a, std::size_t b) {
         for (std::size_t r = a; r < b; ++r) {
             // Node 0 of a subtree is its root (placed by the top levels), node i > 0 goes to
@@ -300,9 +317,15 @@ void widenBvh(const std::vector<BvhNode>& binary, std::vector<WideBvhNode>& wide
 }
 
 BvhStats buildBvh(const Scene& scene, std::vector<WideBvhNode>& nodes, std::vector<std::uint32_t>& refs) {
-    std::vector<BvhNode> binary;
+    // The wide nodes are sized while the binary tree is built: the bench's meshes have a wide node
+    // per 6.8 primitives, the estimate is a little more (widenBvh sizes them exactly). Address
+    // space is reserved for half a node a primitive (untouched pages cost nothing), so that a
+    // tree larger than the estimate is not moved.
+    const std::size_t primitives = scene.spheres.size() + scene.quads.size() + scene.triangles.size();
+    SizedOnHelper<WideBvhNode> sized(nodes, primitives / 2 + 64, primitives * 3 / 20);
+    BinaryBvh binary;
     BvhStats stats = buildBinaryBvh(scene, binary, refs);
-    widenBvh(binary, nodes, stats);
+    widenBvh(binary, sized.get(), stats);
     stats.buildSeconds += stats.widenSeconds;
     return stats;
 }
