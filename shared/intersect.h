@@ -9,6 +9,13 @@
 #include "math.h"
 #include "texture.h"
 
+// The CPU build for x86-64 tests a wide node's four boxes at once with SSE2 (one child a lane);
+// nvcc and glslang never see this block and test them one by one in traceRay's loop.
+#if defined(__cplusplus) && !defined(__CUDACC__) && defined(__SSE2__)
+#define PH_WIDE_BOX_SIMD 1
+#include "wide_box_test_simd.h"
+#endif
+
 PH_NAMESPACE_BEGIN
 
 struct Ray {
@@ -325,6 +332,9 @@ PH_FN TraceResult traceRay(BUF_PARAM PH_IN(Ray) ray, uint query) {
         } else {
             WideBvhNode n = BUF(bvhNodes)[code];
             vec3 scale = wideScale(n.scales);
+#ifdef PH_WIDE_BOX_SIMD
+            vec4 entry = wideChildEntriesSimd(n, frame.origin, frame.inverseDirection, scale, result.t);
+#else
             vec4 entry = vec4(FLOAT_MAX);
             for (uint i = 0u; i < BVH_WIDTH; ++i) {
                 if (((n.kinds >> (8u * i)) & 0xffu) == WIDE_CHILD_EMPTY) {
@@ -332,6 +342,7 @@ PH_FN TraceResult traceRay(BUF_PARAM PH_IN(Ray) ray, uint query) {
                 }
                 entry[i] = wideChildEntry(frame, n, scale, i, result.t);
             }
+#endif
             float e0 = entry.x;
             float e1 = entry.y;
             float e2 = entry.z;
