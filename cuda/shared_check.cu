@@ -37,6 +37,7 @@
 #include "../shared/surface.h"
 #include "../shared/texture.h"
 #include "../shared/tonemap.h"
+#include "../shared/wide_box_test_simd.h"
 
 namespace photon {
 __global__ void sharedCheck(Bindings bindings) {

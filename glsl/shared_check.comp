@@ -39,6 +39,7 @@
 #include "../shared/surface.h"
 #include "../shared/texture.h"
 #include "../shared/tonemap.h"
+#include "../shared/wide_box_test_simd.h"
 
 layout(local_size_x = 64) in;
 

@@ -8,13 +8,9 @@
 #include "bindings.h"
 #include "math.h"
 #include "texture.h"
-
-// The CPU build for x86-64 tests a wide node's four boxes at once with SSE2 (one child a lane);
-// nvcc and glslang never see this block and test them one by one in traceRay's loop.
-#if defined(__cplusplus) && !defined(__CUDACC__) && defined(__SSE2__)
-#define PH_WIDE_BOX_SIMD 1
+// The CPU build for x86-64 tests a wide node's four boxes at once with SSE2 (PH_WIDE_BOX_SIMD);
+// for nvcc and glslang the header is empty and traceRay's loop tests them one by one.
 #include "wide_box_test_simd.h"
-#endif
 
 PH_NAMESPACE_BEGIN
 

@@ -1,8 +1,9 @@
 // The CPU's four-box test: a wide node's four child boxes against one ray at once, with SSE2
-// (which every x86-64 has), one child in each lane. intersect.h includes it only where g++
-// compiles for x86-64 (PH_WIDE_BOX_SIMD); CUDA, GLSL and other CPUs test the children one by one
-// (wideChildEntry), and this file must give exactly their answer: the same entry distance, bit for
-// bit, for every child, so that the children are visited in the same order and the images agree.
+// (which every x86-64 has), one child in each lane. Only g++ compiling for x86-64 sees the code
+// below (it defines PH_WIDE_BOX_SIMD, which traceRay asks); for nvcc, glslang and other CPUs this
+// file is empty and they test the children one by one (wideChildEntry). It must give exactly their
+// answer: the same entry distance, bit for bit, for every child, so that the children are visited
+// in the same order and the images agree.
 //
 // It does so by doing the same float operations in the same order as intersectBox(wideChildEntry):
 // decode a plane (origin + q · scale), distance to it ((plane − ray origin) · inverse direction),
@@ -10,6 +11,9 @@
 // may be contracted into an FMA (the CPU build has -ffp-contract=off, and no -mfma besides).
 #ifndef PHOTON_SHARED_WIDE_BOX_TEST_SIMD_H
 #define PHOTON_SHARED_WIDE_BOX_TEST_SIMD_H
+
+#if defined(__cplusplus) && !defined(__CUDACC__) && defined(__SSE2__)
+#define PH_WIDE_BOX_SIMD 1
 
 #include <emmintrin.h>
 
@@ -99,4 +103,5 @@ inline vec4 wideChildEntriesSimd(const WideBvhNode& n, vec3 rayOrigin, vec3 inve
 
 }  // namespace photon
 
+#endif  // g++ on x86-64
 #endif
