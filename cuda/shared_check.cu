@@ -39,6 +39,7 @@
 #include "../shared/texture.h"
 #include "../shared/tonemap.h"
 #include "../shared/volume_estimate.h"
+#include "../shared/wide_box_test_simd.h"
 
 namespace photon {
 __global__ void sharedCheck(Bindings bindings) {

@@ -41,6 +41,7 @@
 #include "../shared/texture.h"
 #include "../shared/tonemap.h"
 #include "../shared/volume_estimate.h"
+#include "../shared/wide_box_test_simd.h"
 
 layout(local_size_x = 64) in;
 

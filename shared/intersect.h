@@ -8,6 +8,9 @@
 #include "bindings.h"
 #include "math.h"
 #include "texture.h"
+// The CPU build for x86-64 tests a wide node's four boxes at once with SSE2 (PH_WIDE_BOX_SIMD);
+// for nvcc and glslang the header is empty and traceRay's loop tests them one by one.
+#include "wide_box_test_simd.h"
 
 PH_NAMESPACE_BEGIN
 
@@ -325,6 +328,9 @@ PH_FN TraceResult traceRay(BUF_PARAM PH_IN(Ray) ray, uint query) {
         } else {
             WideBvhNode n = BUF(bvhNodes)[code];
             vec3 scale = wideScale(n.scales);
+#ifdef PH_WIDE_BOX_SIMD
+            vec4 entry = wideChildEntriesSimd(n, frame.origin, frame.inverseDirection, scale, result.t);
+#else
             vec4 entry = vec4(FLOAT_MAX);
             for (uint i = 0u; i < BVH_WIDTH; ++i) {
                 if (((n.kinds >> (8u * i)) & 0xffu) == WIDE_CHILD_EMPTY) {
@@ -332,6 +338,7 @@ PH_FN TraceResult traceRay(BUF_PARAM PH_IN(Ray) ray, uint query) {
                 }
                 entry[i] = wideChildEntry(frame, n, scale, i, result.t);
             }
+#endif
             float e0 = entry.x;
             float e1 = entry.y;
             float e2 = entry.z;

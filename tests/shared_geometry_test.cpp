@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "shared/bsdf.h"
 #include "shared/estimate.h"
@@ -120,6 +121,70 @@ TEST(Intersect, ClosestHitAcrossPrimitiveKinds) {
     EXPECT_FALSE(traceOccluded(sb.bindings, vec3(0), vec3(0, 0, -1), 1.4f));
     EXPECT_TRUE(traceOccluded(sb.bindings, vec3(0), vec3(0, 0, -1), 1.6f));
 }
+
+#ifdef PH_WIDE_BOX_SIMD
+// The CPU's SSE four-box test (wide_box_test_simd.h) answers as the portable child-by-child test,
+// bit for bit, on random nodes: inverted boxes (missed), children absent after the first empty
+// one, rays from inside boxes, rays along an axis (an inverse direction of 1e20), short tMax.
+TEST(Intersect, WideBoxTestSimdMatchesTheChildByChildTest) {
+    std::mt19937 rng(41u);
+    std::uniform_real_distribution<float> coordinate(-8.0f, 8.0f);
+    auto exponents = [&]() { return (120u + rng() % 8u) | ((120u + rng() % 8u) << 8u) | ((120u + rng() % 8u) << 16u); };
+    // Planes of four children along one axis (lower and upper words, a byte per child); one box in
+    // eight inverted, which is missed.
+    auto planes = [&](std::uint32_t& lower, std::uint32_t& upper) {
+        lower = 0u;
+        upper = 0u;
+        for (std::uint32_t i = 0u; i < BVH_WIDTH; ++i) {
+            std::uint32_t a = rng() % 256u;
+            std::uint32_t b = rng() % 256u;
+            bool inverted = rng() % 8u == 0u;
+            lower |= ((a < b) != inverted ? a : b) << (8u * i);
+            upper |= ((a < b) != inverted ? b : a) << (8u * i);
+        }
+    };
+    auto kinds = [&]() {
+        const std::uint32_t choices[4] = {WIDE_CHILD_EMPTY, WIDE_CHILD_INNER, 1u, 4u};
+        std::uint32_t k = 0u;
+        for (std::uint32_t i = 0u; i < BVH_WIDTH; ++i) {
+            k |= choices[rng() % 4u] << (8u * i);
+        }
+        return k;
+    };
+    int hits = 0;
+    int mismatches = 0;
+    for (int i = 0; i < 200000; ++i) {
+        WideBvhNode n{};
+        n.origin = vec3(coordinate(rng), coordinate(rng), coordinate(rng));
+        n.scales = exponents();
+        planes(n.lowerX, n.upperX);
+        planes(n.lowerY, n.upperY);
+        planes(n.lowerZ, n.upperZ);
+        n.kinds = kinds();
+        n.pad0 = rng();
+        vec3 scale = wideScale(n.scales);
+        vec3 origin(coordinate(rng), coordinate(rng), coordinate(rng));
+        vec3 target(float(rng() % 256u), float(rng() % 256u), float(rng() % 256u));  // aimed into the node
+        vec3 d = n.origin + target * scale - origin;
+        if (rng() % 4u == 0u) {
+            d[rng() % 3u] = 0.0f;  // parallel to an axis
+        }
+        float tMax = (rng() % 2u == 0u) ? FLOAT_MAX : std::abs(coordinate(rng));
+        RayFrame f = makeRayFrame(makeRay(origin, glm::normalize(d), tMax));
+        vec4 simd = wideChildEntriesSimd(n, f.origin, f.inverseDirection, scale, tMax);
+        vec4 portable = vec4(FLOAT_MAX);  // traceRay's portable loop
+        for (std::uint32_t c = 0u; c < BVH_WIDTH && ((n.kinds >> (8u * c)) & 0xffu) != WIDE_CHILD_EMPTY; ++c) {
+            portable[c] = wideChildEntry(f, n, scale, c, tMax);
+        }
+        for (int c = 0; c < 4; ++c) {
+            hits += portable[c] < FLOAT_MAX ? 1 : 0;
+            mismatches += floatBitsToUint(simd[c]) != floatBitsToUint(portable[c]) ? 1 : 0;
+        }
+    }
+    EXPECT_EQ(mismatches, 0);
+    EXPECT_GT(hits, 20000);  // enough boxes are met for the comparison to mean something
+}
+#endif
 
 TEST(Fresnel, NormalIncidenceGrazingAndTotalInternalReflection) {
     float n = 1.5f;
