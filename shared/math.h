@@ -82,8 +82,7 @@ PH_FN float expNegative(float x) {
     }
     float k = floor(y);
     float t = (y - k) * 0.693147181f;
-    // precise: 1 − t·(1 − t·…) is lerp-shaped, which Mesa would fuse (portable.h).
-    PH_PRECISE float p = 1.0f - t * (1.0f - t * (0.5f - t * (1.6666667e-1f - t * (4.1666667e-2f - t * (8.3333333e-3f -
+    float p = 1.0f - t * (1.0f - t * (0.5f - t * (1.6666667e-1f - t * (4.1666667e-2f - t * (8.3333333e-3f -
               t * (1.3888889e-3f - t * (1.9841270e-4f - t * 2.4801587e-5f)))))));
     return p * uintBitsToFloat(uint(127 - int(k)) << 23u);
 }

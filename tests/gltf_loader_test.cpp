@@ -123,6 +123,38 @@ TEST(GltfLoader, AlphaModesVolumeAndTextureTransform) {
     expectNear(material(2).attenuation, glm::vec3(std::log(2.0f) / 2.0f, 0.0f, std::log(4.0f) / 2.0f), 1e-5f);
 }
 
+// KHR_materials_volume_scatter (proposed): the attenuation becomes the extinction of a medium
+// inside, split by the single-scattering albedo of Kulla and Conty's fit (multiscatterColor 0: none
+// scatters, 1: all does); a volume without attenuation stays clear.
+TEST(GltfLoader, VolumeScatterMakesAMedium) {
+    Gltf g;
+    g.parts["extensionsUsed"] = R"(["KHR_materials_volume", "KHR_materials_transmission", "KHR_materials_volume_scatter"])";
+    g.parts["materials"] = R"([
+        {"extensions": {"KHR_materials_transmission": {"transmissionFactor": 1},
+                        "KHR_materials_volume": {"thicknessFactor": 1, "attenuationDistance": 2,
+                                                 "attenuationColor": [0.5, 0.5, 0.5]},
+                        "KHR_materials_volume_scatter": {"multiscatterColor": [0, 1, 0.5], "scatterAnisotropy": 0.4}}},
+        {"extensions": {"KHR_materials_volume": {"thicknessFactor": 1},
+                        "KHR_materials_volume_scatter": {"multiscatterColor": [1, 1, 1]}}}])";
+    g.trianglePerMaterial(2);
+    Scene scene;
+    load(scene, "scatter.gltf", g.text());
+    scene.finalize();
+    const Material& milky = scene.materials[scene.triangles[0].material];
+    ASSERT_NE(milky.medium, NONE);
+    EXPECT_EQ(milky.attenuation, glm::vec3(0.0f)) << "the medium absorbs instead";
+    const Medium& md = scene.media[milky.medium];
+    const float sigmaT = std::log(2.0f) / 2.0f;
+    EXPECT_NEAR(md.scattering.x, 0.0f, 1e-5f);
+    EXPECT_NEAR(md.absorption.x, sigmaT, 1e-5f);
+    EXPECT_NEAR(md.scattering.y, sigmaT, 1e-4f);
+    EXPECT_NEAR(md.absorption.y, 0.0f, 1e-4f);
+    EXPECT_GT(md.scattering.z / sigmaT, 0.8f) << "a multi-scatter albedo of 0.5 needs a single-scatter one near 0.9";
+    EXPECT_NEAR(md.scattering.z + md.absorption.z, sigmaT, 1e-5f);
+    EXPECT_FLOAT_EQ(md.g, 0.4f);
+    EXPECT_EQ(scene.materials[scene.triangles[1].material].medium, NONE);
+}
+
 TEST(GltfLoader, BaseColourTextureWithItsSampler) {
     Gltf g;
     std::string png = twoTexelPng();

@@ -44,13 +44,19 @@ std::uint32_t sppmPasses(std::uint32_t paths) {
 
 // The volume map's first beam radius, whatever the estimator: its footprints at the median
 // footprint (the beam's disc lies across the camera ray, so a pixel's width is its scale), or its
-// share of the fallback. Its frames then shrink it by Knaus and Zwicker's schedule (frame()).
-float firstBeamRadius(const RenderSettings& settings, const Footprints& footprints, float fallback) {
+// share of the fallback; within a bounded grid's cell, which is as far as the beam estimate reaches
+// from the cells a ray crosses. Its frames then shrink it by Knaus and Zwicker's schedule (frame()).
+float firstBeamRadius(const Scene& scene, const RenderSettings& settings, const Footprints& footprints, float fallback) {
     float given = mapRadius(settings, MAP_VOLUME);
     if (given > 0.0f) {
         return given;
     }
-    return footprints.any ? kAutoRadiusFootprints[MAP_VOLUME] * footprints.median : kFallbackShare[MAP_VOLUME] * fallback;
+    float r = footprints.any ? kAutoRadiusFootprints[MAP_VOLUME] * footprints.median : kFallbackShare[MAP_VOLUME] * fallback;
+    if (settings.grid == GridKind::Bounded) {
+        glm::vec3 extent = scene.boundsMax - scene.boundsMin;
+        r = std::min(r, std::max({extent.x, extent.y, extent.z}) / float(settings.gridResolution));
+    }
+    return r;
 }
 
 }  // namespace
@@ -83,7 +89,7 @@ FrameRadii firstFrameRadii(const Scene& scene, const RenderSettings& settings, c
             float unseen = m == MAP_GLOBAL ? fallback : kFallbackShare[m] * fallback;
             r.radius[m] = given > 0.0f ? given : footprints.any ? footprints.median * r.sppm[m].firstFootprints : unseen;
         }
-        r.radius[MAP_VOLUME] = firstBeamRadius(settings, footprints, fallback);
+        r.radius[MAP_VOLUME] = firstBeamRadius(scene, settings, footprints, fallback);
         return r;
     }
     for (std::uint32_t m = 0; m < SURFACE_MAP_COUNT; ++m) {
@@ -103,7 +109,7 @@ FrameRadii firstFrameRadii(const Scene& scene, const RenderSettings& settings, c
             }
         }
     }
-    r.radius[MAP_VOLUME] = firstBeamRadius(settings, footprints, fallback);
+    r.radius[MAP_VOLUME] = firstBeamRadius(scene, settings, footprints, fallback);
     return r;
 }
 

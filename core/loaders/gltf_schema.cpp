@@ -52,6 +52,7 @@ const Type kIor{{{"ior", Kind::Number}}, {}};
 const Type kEmissiveStrength{{{"emissiveStrength", Kind::Number}}, {}};
 const Type kVolume{{{"thicknessFactor", Kind::Number}, {"thicknessTexture", Kind::Object, &kTextureInfo},
                     {"attenuationDistance", Kind::Number}, {"attenuationColor", Kind::Numbers}}, {}};
+const Type kVolumeScatter{{{"multiscatterColor", Kind::Numbers}, {"scatterAnisotropy", Kind::Number}}, {}};
 // KHR_materials_dispersion's one number is checked by the loader, type and range in one message.
 const Type kSpot{{{"innerConeAngle", Kind::Number}, {"outerConeAngle", Kind::Number}}, {}};
 const Type kLight{{{"type", Kind::String}, {"color", Kind::Numbers}, {"intensity", Kind::Number}, {"range", Kind::Number},
@@ -79,7 +80,8 @@ const Type kMaterial{{{"pbrMetallicRoughness", Kind::Object, &kPbrMetallicRoughn
                       {"emissiveTexture", Kind::Object, &kTextureInfo}, {"emissiveFactor", Kind::Numbers},
                       {"alphaMode", Kind::String}, {"alphaCutoff", Kind::Number}, {"doubleSided", Kind::Boolean}},
                      {{"KHR_materials_transmission", &kTransmission}, {"KHR_materials_ior", &kIor},
-                      {"KHR_materials_emissive_strength", &kEmissiveStrength}, {"KHR_materials_volume", &kVolume}}};
+                      {"KHR_materials_emissive_strength", &kEmissiveStrength}, {"KHR_materials_volume", &kVolume},
+                      {"KHR_materials_volume_scatter", &kVolumeScatter}}};
 const Type kTexture{{{"sampler", Kind::Id}, {"source", Kind::Id}}, {}};
 const Type kImage{{{"uri", Kind::String}, {"mimeType", Kind::String}, {"bufferView", Kind::Id}}, {}};
 const Type kSampler{{{"magFilter", Kind::Id}, {"minFilter", Kind::Id}, {"wrapS", Kind::Id}, {"wrapT", Kind::Id}}, {}};
