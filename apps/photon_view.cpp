@@ -91,7 +91,7 @@ int run(int argc, char** argv) {
     if (!ownView) {
         const viewer::DisplayView views[] = {viewer::DisplayView::Final, viewer::DisplayView::Direct,
                                              viewer::DisplayView::Global, viewer::DisplayView::Caustic,
-                                             viewer::DisplayView::Grid};
+                                             viewer::DisplayView::Grid, viewer::DisplayView::Volume};
         o.view = views[std::uint32_t(o.settings.view)];
     }
     if (!cameraPath.empty()) {

@@ -93,7 +93,8 @@ PH_CONST uint VIEW_DIRECT = 1u;   // emission + direct light only
 PH_CONST uint VIEW_GLOBAL = 2u;   // global-map estimate only
 PH_CONST uint VIEW_CAUSTIC = 3u;  // caustic-map estimate only
 PH_CONST uint VIEW_GRID = 4u;     // photons in the hit point's cell, as a heat map
-PH_CONST uint VIEW_COUNT = 5u;
+PH_CONST uint VIEW_VOLUME = 5u;   // the light media scatter towards the eye only (volume map)
+PH_CONST uint VIEW_COUNT = 6u;
 
 // Tone curves (display only, shared/tonemap.h).
 PH_CONST uint TONEMAP_CLAMP = 0u;

@@ -304,7 +304,13 @@ PH_FN HitPoint tracePixel(BUF_PARAM uint pixel) {
         medium = mediumAcross(BUF_ARG medium, m, hit.kind, hit.normal, wo, bs.direction);
         ray = makeRay(offsetRayOrigin(hit.position, sp.geometricNormal, bs.direction), bs.direction, FLOAT_MAX);
     }
-    hp.direct += volume;
+    // The media's light joins the final image, or is all the volume view shows.
+    if (BUF(params).view == VIEW_VOLUME) {
+        hp.direct = volume;
+        hp.material = NONE;
+    } else if (BUF(params).view == VIEW_FINAL) {
+        hp.direct += volume;
+    }
     hp.channel = channel;
     return hp;
 }

@@ -66,7 +66,8 @@ PH_FN vec3 heatColor(float t) {
     return clamp(vec3(x - 2.0f, x < 2.0f ? x : 4.0f - x, 2.0f - x), vec3(0.0f), vec3(1.0f));
 }
 
-PH_FN bool viewShowsDirect(uint view) { return view == VIEW_FINAL || view == VIEW_DIRECT; }
+// (The volume view's light is in the hit point's `direct` alone: eye_trace.h.)
+PH_FN bool viewShowsDirect(uint view) { return view == VIEW_FINAL || view == VIEW_DIRECT || view == VIEW_VOLUME; }
 
 // Whether the view needs photon map `map` at all.
 PH_FN bool viewShowsMap(uint view, uint map) {

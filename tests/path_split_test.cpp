@@ -58,7 +58,7 @@ TEST(PathSplit, RanksTogetherTraceThePhotonsOfOne) {
                 std::vector<MapPhoton> a = sortedByBytes(merged[m]);
                 std::vector<MapPhoton> b = sortedByBytes(whole.stored[m]);
                 ASSERT_EQ(a.size(), b.size()) << "map " << m;
-                EXPECT_GT(b.size(), 0u);
+                EXPECT_TRUE(b.size() > 0u || m == MAP_VOLUME) << "map " << m;  // these scenes have no media
                 std::size_t differing = 0;
                 for (std::size_t i = 0; i < a.size(); ++i) {
                     differing += samePhoton(a[i], b[i]) ? 0 : 1;

@@ -52,8 +52,10 @@ struct OrderFixture {
         b.params.grids[MAP_GLOBAL].kind = GRID_HASHED;
         b.params.grids[MAP_GLOBAL].cellCount = kCells;
         b.params.grids[MAP_GLOBAL].photonCapacity = n;
-        b.params.grids[MAP_CAUSTIC].photonOffset = n;
-        b.params.grids[MAP_CAUSTIC].cellOffset = kCells + 1;
+        for (std::uint32_t m = MAP_GLOBAL + 1u; m < MAP_COUNT; ++m) {  // the other maps: empty, after it
+            b.params.grids[m].photonOffset = n;
+            b.params.grids[m].cellOffset = kCells + 1;
+        }
         b.params.frameIndex = 3;
         b.params.seed = 11;
     }

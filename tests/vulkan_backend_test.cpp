@@ -306,7 +306,7 @@ TEST_F(VulkanBackendTest, FinalGatherAgreesWithCpu) {
 }
 
 TEST_F(VulkanBackendTest, EveryViewAgreesWithCpu) {
-    for (View view : {View::Direct, View::Global, View::Caustic, View::Grid}) {
+    for (View view : {View::Direct, View::Global, View::Caustic, View::Grid, View::Volume}) {
         RenderSettings settings = smallSettings();
         settings.view = view;
         render(featureScene(), settings);

@@ -13,8 +13,8 @@ namespace photon::viewer {
 
 // What the image shows: the backend's views, and the viewer's own photon dots.
 // Albedo, Normal, Depth: the auxiliary images (shared/aov.h) the denoiser is guided by.
-enum class DisplayView : std::uint32_t { Final, Direct, Global, Caustic, Dots, Grid, Albedo, Normal, Depth };
-constexpr std::uint32_t kDisplayViewCount = 9;
+enum class DisplayView : std::uint32_t { Final, Direct, Global, Caustic, Dots, Grid, Albedo, Normal, Depth, Volume };
+constexpr std::uint32_t kDisplayViewCount = 10;
 inline bool isAovView(DisplayView v) { return v == DisplayView::Albedo || v == DisplayView::Normal || v == DisplayView::Depth; }
 const char* toString(DisplayView view);
 

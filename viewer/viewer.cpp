@@ -17,7 +17,7 @@
 namespace photon::viewer {
 
 const char* toString(DisplayView view) {
-    const char* names[] = {"final", "direct", "global", "caustic", "dots", "grid", "albedo", "normal", "depth"};
+    const char* names[] = {"final", "direct", "global", "caustic", "dots", "grid", "albedo", "normal", "depth", "volume"};
     static_assert(sizeof(names) / sizeof(names[0]) == kDisplayViewCount, "a name for every view");
     if (std::uint32_t(view) >= kDisplayViewCount) {
         throw std::logic_error("unknown display view " + std::to_string(std::uint32_t(view)));

@@ -70,8 +70,12 @@ void Viewer::handleInput(float seconds) {
 }
 
 void Viewer::handleKey(int key) {
-    if (key >= GLFW_KEY_1 && key < GLFW_KEY_1 + int(kDisplayViewCount)) {
+    if (key >= GLFW_KEY_1 && key <= GLFW_KEY_9) {
         state_.view = DisplayView(key - GLFW_KEY_1);
+        return;
+    }
+    if (key == GLFW_KEY_0) {  // the tenth view
+        state_.view = DisplayView::Volume;
         return;
     }
     switch (key) {

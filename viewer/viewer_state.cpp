@@ -34,6 +34,7 @@ View backendView(DisplayView view) {
         case DisplayView::Albedo:
         case DisplayView::Normal:
         case DisplayView::Depth: return View::Final;
+        case DisplayView::Volume: return View::Volume;
     }
     throw std::logic_error("unknown display view");
 }

@@ -23,7 +23,8 @@ constexpr Names<View, enumCount<View>()> kViews{{{View::Final, "final"},
                                  {View::Direct, "direct"},
                                  {View::Global, "global"},
                                  {View::Caustic, "caustic"},
-                                 {View::Grid, "grid"}}};
+                                 {View::Grid, "grid"},
+                                 {View::Volume, "volume"}}};
 constexpr Names<Tonemap, enumCount<Tonemap>()> kTonemaps{{{Tonemap::Clamp, "clamp"}, {Tonemap::Reinhard, "reinhard"}, {Tonemap::Aces, "aces"}}};
 constexpr Names<Denoise, enumCount<Denoise>()> kDenoise{{{Denoise::Off, "off"}, {Denoise::On, "on"}}};
 

@@ -26,7 +26,8 @@ enum class View : std::uint32_t {
     Direct = VIEW_DIRECT,
     Global = VIEW_GLOBAL,
     Caustic = VIEW_CAUSTIC,
-    Grid = VIEW_GRID
+    Grid = VIEW_GRID,
+    Volume = VIEW_VOLUME
 };
 enum class Tonemap : std::uint32_t { Clamp = TONEMAP_CLAMP, Reinhard = TONEMAP_REINHARD, Aces = TONEMAP_ACES };
 enum class Denoise : std::uint32_t { Off = DENOISE_OFF, On = DENOISE_ON };
