@@ -48,7 +48,8 @@
     X(DENOISE, 29u, DenoisePixel, denoisePixels, RW, DENOISE_PIXEL)         \
     X(DENOISED, 30u, vec4, denoised, RW, DENOISE_PIXEL)                    \
     X(HISTORY, 31u, HistoryPixel, history, RW, HISTORY_PIXEL)               \
-    X(MEDIA, 32u, Medium, media, RO, SCENE)
+    X(MEDIA, 32u, Medium, media, RO, SCENE)                                 \
+    X(DENSITIES, 33u, float, densities, RO, SCENE)
 
 PH_NAMESPACE_BEGIN
 

@@ -196,7 +196,7 @@ PH_FN void eyeRayThroughMedium(BUF_PARAM PH_INOUT(vec3) volume, PH_INOUT(vec3) w
     vec2 span = mediumSpan(md, ray.origin, ray.direction, tHit);
     if (span.x < span.y) {
         volume += weight * beamRadianceEstimate(BUF_ARG md, ray.origin, ray.direction, span);
-        weight *= expNegative3(extinctionOf(md) * (span.y - span.x));
+        weight *= expNegative3(extinctionOf(md) * densityIntegral(BUF_ARG md, ray.origin, ray.direction, span.x, span.y));
     }
 }
 

@@ -72,13 +72,16 @@ struct PH_ALIGN16 Material {
     // medium: the participating medium inside (a Medium; NONE: none), medium.h
 };
 
-// A homogeneous participating medium (medium.h): what fills the inside of the objects whose
-// material names it, or the scene (SceneInfo.medium) within its box.
+// A participating medium (medium.h): what fills the inside of the objects whose material names
+// it, or the scene (SceneInfo.medium) within its box. Homogeneous, or heterogeneous: its
+// coefficients scaled by a density grid whose voxels tile the box (medium_grid.h).
 struct PH_ALIGN16 Medium {
     vec3 absorption; float g;      // absorption coefficient σa [1/m]; Henyey–Greenstein's mean cosine
-    vec3 scattering; uint pad0;    // scattering coefficient σs [1/m]
-    vec3 lower; float pad1;        // the box it fills (the scene's medium: its bounds; an object's:
-    vec3 upper; float pad2;        // everything, the object bounds it)
+    vec3 scattering; uint grid;    // scattering coefficient σs [1/m]; grid: its first voxel in
+                                   // densities (NONE: homogeneous, density 1)
+    vec3 lower; float pad0;        // the box it fills (the scene's medium: its bounds; an object's:
+    vec3 upper; float pad1;        // everything, the object bounds it; a grid's: the grid's)
+    uvec3 resolution; uint pad2;   // the grid's voxels along x, y, z (x fastest in densities)
 };
 
 // An image in the texels buffer: width × height texels from `offset`, row by row from the top, as
@@ -299,8 +302,8 @@ PH_OFFSET(Material, roughness, 28); PH_OFFSET(Material, emission, 32); PH_OFFSET
 PH_OFFSET(Material, albedoTexture, 48); PH_OFFSET(Material, emissionTexture, 60); PH_OFFSET(Material, metallic, 64);
 PH_OFFSET(Material, alphaCutoff, 76); PH_OFFSET(Material, attenuation, 80); PH_OFFSET(Material, flags, 92);
 PH_OFFSET(Material, normalScale, 96); PH_OFFSET(Material, dispersion, 100); PH_OFFSET(Material, medium, 104);
-PH_SIZE(Medium, 64); PH_OFFSET(Medium, g, 12); PH_OFFSET(Medium, scattering, 16); PH_OFFSET(Medium, lower, 32);
-PH_OFFSET(Medium, upper, 48);
+PH_SIZE(Medium, 80); PH_OFFSET(Medium, g, 12); PH_OFFSET(Medium, scattering, 16); PH_OFFSET(Medium, grid, 28);
+PH_OFFSET(Medium, lower, 32); PH_OFFSET(Medium, upper, 48); PH_OFFSET(Medium, resolution, 64);
 PH_SIZE(Texture, 48); PH_OFFSET(Texture, wrap, 12); PH_OFFSET(Texture, transformS, 16); PH_OFFSET(Texture, transformT, 32);
 PH_SIZE(WideBvhNode, 64); PH_OFFSET(WideBvhNode, scales, 12); PH_OFFSET(WideBvhNode, lowerX, 16);
 PH_OFFSET(WideBvhNode, kinds, 28); PH_OFFSET(WideBvhNode, upperX, 32); PH_OFFSET(WideBvhNode, pad0, 44);

@@ -1,6 +1,6 @@
-// Homogeneous participating media (Jensen & Christensen 1998; pbrt-v4's HomogeneousMedium): an
-// absorption coefficient σa and a scattering coefficient σs per channel, and Henyey–Greenstein
-// scattering. A medium fills the inside of the objects whose material names it, or the scene
+// Participating media (Jensen & Christensen 1998; pbrt-v4's HomogeneousMedium): an absorption
+// coefficient σa and a scattering coefficient σs per channel, scaled by a density grid in
+// heterogeneous media (medium_grid.h), and Henyey–Greenstein scattering. A medium fills the inside of the objects whose material names it, or the scene
 // (SceneInfo.medium) within a box. Paths carry the medium they are in (PathMedium below).
 //
 // Photons fly freely through it (sampleFreeFlight) and scatter, leaving a photon in the volume
@@ -11,6 +11,7 @@
 
 #include "bindings.h"
 #include "math.h"
+#include "medium_grid.h"
 #include "rng.h"
 #include "spectral.h"
 
@@ -91,35 +92,38 @@ struct FreeFlight {
     bool scatters;  // a real collision before tExit
 };
 
-// Free-flight sampling with several channels (pbrt-v3's HomogeneousMedium::Sample): the distance
-// by one channel's extinction picked at random, weighted by the density averaged over the three
-// (one-sample multiple importance sampling), so the estimate is unbiased in every channel and the
-// weight stays bounded. At a collision the weight carries σs·T/p (absorption ends nothing: it
-// scales the power); past tExit, T/P. A medium that only absorbs takes its transmittance exactly.
-// Two draws when the medium scatters.
-PH_FN FreeFlight sampleFreeFlight(PH_IN(Medium) md, float tEnter, float tExit, PH_INOUT(Rng) rng) {
+// Free-flight sampling with several channels (pbrt-v3's HomogeneousMedium::Sample): the optical
+// depth by one channel's extinction picked at random, weighted by the density averaged over the
+// three (one-sample multiple importance sampling), so the estimate is unbiased in every channel
+// and the weight stays bounded. At a collision the weight carries σs·T/p (absorption ends
+// nothing: it scales the power); past tExit, T/P. In a heterogeneous medium ρ(x) scales σs and
+// every channel's σt alike and cancels from the weight: the same flight in the density integral
+// D instead of the length (medium_grid.h). A medium that only absorbs takes its transmittance
+// exactly. Two draws when the medium scatters.
+PH_FN FreeFlight sampleFreeFlight(BUF_PARAM PH_IN(Medium) md, vec3 o, vec3 d, float tEnter, float tExit,
+                                  PH_INOUT(Rng) rng) {
     FreeFlight f;
     f.t = tExit;
     f.scatters = false;
     vec3 sigmaT = extinctionOf(md);
-    float span = tExit - tEnter;
     if (isBlack(md.scattering)) {
-        f.weight = expNegative3(sigmaT * span);
+        f.weight = expNegative3(sigmaT * densityIntegral(BUF_ARG md, o, d, tEnter, tExit));
         return f;
     }
     float pick = rngNext(rng) * 3.0f;
     float sigma = pick < 1.0f ? sigmaT.x : pick < 2.0f ? sigmaT.y : sigmaT.z;
-    float distance = sigma > 0.0f ? negativeLog(1.0f - rngNext(rng)) / sigma : FLOAT_MAX;
-    if (distance < span) {
-        vec3 transmittance = expNegative3(sigmaT * distance);
+    float depth = sigma > 0.0f ? negativeLog(1.0f - rngNext(rng)) / sigma : FLOAT_MAX;
+    DensityWalk walk = walkDensity(BUF_ARG md, o, d, tEnter, tExit, depth);
+    if (walk.reached) {
+        vec3 transmittance = expNegative3(sigmaT * depth);
         vec3 density = sigmaT * transmittance;
         PH_PRECISE vec3 weight = md.scattering * transmittance * (3.0f / (density.x + density.y + density.z));
         f.weight = weight;
-        f.t = tEnter + distance;
+        f.t = walk.t;
         f.scatters = true;
         return f;
     }
-    vec3 transmittance = expNegative3(sigmaT * span);
+    vec3 transmittance = expNegative3(sigmaT * walk.integral);
     float passes = transmittance.x + transmittance.y + transmittance.z;
     PH_PRECISE vec3 weight = transmittance * (3.0f / passes);
     f.weight = passes > 0.0f ? weight : vec3(0.0f);
@@ -152,7 +156,7 @@ PH_FN vec3 mediumTransmittance(BUF_PARAM uint medium, vec3 o, vec3 d, float dist
     if (!(span.x < span.y)) {
         return vec3(1.0f);
     }
-    return expNegative3(extinctionOf(md) * (span.y - span.x));
+    return expNegative3(extinctionOf(md) * densityIntegral(BUF_ARG md, o, d, span.x, span.y));
 }
 
 PH_NAMESPACE_END

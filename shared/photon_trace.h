@@ -87,7 +87,7 @@ PH_FN bool photonFlight(BUF_PARAM PH_INOUT(PhotonPath) path, float tHit, PH_OUT(
     if (!(span.x < span.y)) {
         return false;
     }
-    FreeFlight flight = sampleFreeFlight(md, span.x, span.y, path.rng);
+    FreeFlight flight = sampleFreeFlight(BUF_ARG md, path.origin, path.direction, span.x, span.y, path.rng);
     path.power *= flight.weight;
     if (!flight.scatters) {
         return false;

@@ -13,6 +13,7 @@
 #include "core/loaders/scene_loader.h"
 #include "core/scene/camera_path.h"
 #include "cuda/cuda_device.h"
+#include "media_scenes.h"
 
 namespace photon {
 namespace {
@@ -242,6 +243,15 @@ TEST_F(CudaVsCpu, MediaInTheParityBuild) {
     s.deterministic = true;
     compare(scene, s, "cuda-parity-fog", true);
     compare(scene, s, "cuda-fast-fog", false);
+}
+
+// A heterogeneous medium: the walks over its voxels, bit for bit in the parity build.
+TEST_F(CudaVsCpu, HeterogeneousMediaInTheParityBuild) {
+    RenderSettings s = small();
+    s.photons = 30000;
+    s.deterministic = true;
+    compare(test::heterogeneousFog(), s, "cuda-parity-smoky-fog", true);
+    compare(test::heterogeneousFog(), s, "cuda-fast-smoky-fog", false);
 }
 
 TEST_F(CudaVsCpu, OverflowingPhotonMapGrowsAndTheFirstFrameIsRedone) {

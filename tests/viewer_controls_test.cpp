@@ -9,6 +9,7 @@
 #include "viewer/camera_controller.h"
 #include "viewer/hud.h"
 #include "viewer/light_editor.h"
+#include "test_util.h"
 
 namespace photon::viewer {
 namespace {
@@ -184,6 +185,25 @@ TEST(LightEditor, TurnsAndDimsTheEnvironment) {
     EXPECT_LT(turned.lights[turned.environmentLight].power.x, s.lights[s.environmentLight].power.x);
     editor.reset();
     expectNear(environmentMapX(editor.scene().lights[0]), glm::vec3(1, 0, 0), 1e-6f);
+}
+
+// A medium's density scales its coefficients and its g is replaced; reset brings the file's back.
+TEST(LightEditor, EditsTheMediaDensityAndG) {
+    Scene fog = loadSceneFile(test::scenesDir() + "/fog.json");
+    LightEditor editor(fog);
+    ASSERT_EQ(editor.mediumCount(), 1u);
+    EXPECT_EQ(editor.mediumDensity(0), 1.0f);
+    EXPECT_EQ(editor.mediumG(0), fog.media[0].g);
+    editor.setMediumDensity(0, 4.0f);
+    editor.setMediumG(0, -0.5f);
+    Scene edited = editor.scene();
+    EXPECT_EQ(edited.media[0].scattering, 4.0f * fog.media[0].scattering);
+    EXPECT_EQ(edited.media[0].absorption, 4.0f * fog.media[0].absorption);
+    EXPECT_EQ(edited.media[0].g, -0.5f);
+    EXPECT_EQ(edited.media[0].lower, fog.media[0].lower);
+    editor.reset();
+    EXPECT_EQ(editor.scene().media[0].scattering, fog.media[0].scattering);
+    EXPECT_EQ(editor.scene().media[0].g, fog.media[0].g);
 }
 
 TEST(LightEditor, CornellLightMovesWithTheScene) {

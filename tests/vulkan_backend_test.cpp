@@ -27,6 +27,7 @@
 #include "core/scene/camera_path.h"
 #include "core/system/error.h"
 #include "shared/photon_map.h"
+#include "media_scenes.h"
 #include "test_util.h"
 #include "vulkan/context.h"
 #include "vulkan/vulkan_device.h"
@@ -376,6 +377,22 @@ TEST_F(VulkanBackendTest, MediaMatchCpu) {
     render(scene, settings);
     expectSameStages("fog.json, isotropic", true, true);
     EXPECT_LE(compareImages(cpu_->readFrame(), vulkan_->readFrame(), "fog.json, isotropic"), imageTolerance());
+}
+
+// A heterogeneous medium: walks over its voxels in every flight, shadow ray and beam, bit for bit
+// with an isotropic phase function.
+TEST_F(VulkanBackendTest, HeterogeneousMediaMatchCpu) {
+    Scene scene = test::heterogeneousFog();
+    for (Medium& md : scene.media) {
+        md.g = 0.0f;
+    }
+    RenderSettings settings = smallSettings();
+    settings.photons = 20000;
+    settings.deterministic = true;
+    render(scene, settings);
+    EXPECT_GT(cpu_->lastFrameStats().stored[MAP_VOLUME], 0u);
+    expectSameStages(scene.name, true, true);
+    EXPECT_LE(compareImages(cpu_->readFrame(), vulkan_->readFrame(), scene.name), imageTolerance());
 }
 
 // Spectral rendering: the frame's wavelengths in every stage, a dispersive prism whose paths keep

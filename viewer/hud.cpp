@@ -137,6 +137,32 @@ void renderSection(ViewState& state, const HudInfo& info) {
     }
 }
 
+// A participating medium's density (a factor on its coefficients) and g; statistics restart.
+void mediaSection(ViewState& state, LightEditor& lights) {
+    if (lights.mediumCount() == 0) {
+        return;
+    }
+    state.selectedMedium = std::min(state.selectedMedium, lights.mediumCount() - 1);
+    if (ImGui::BeginCombo("medium", lights.mediumName(state.selectedMedium).c_str())) {
+        for (std::uint32_t m = 0; m < lights.mediumCount(); ++m) {
+            if (ImGui::Selectable(lights.mediumName(m).c_str(), m == state.selectedMedium)) {
+                state.selectedMedium = m;
+            }
+        }
+        ImGui::EndCombo();
+    }
+    float density = lights.mediumDensity(state.selectedMedium);
+    if (ImGui::SliderFloat("density", &density, 1e-2f, 1e2f, "%.3f x", ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp)) {
+        lights.setMediumDensity(state.selectedMedium, density);
+        state.lightsChanged = true;
+    }
+    float g = lights.mediumG(state.selectedMedium);
+    if (ImGui::SliderFloat("g (forward > 0)", &g, -0.95f, 0.95f, "%.2f", ImGuiSliderFlags_AlwaysClamp)) {
+        lights.setMediumG(state.selectedMedium, g);
+        state.lightsChanged = true;
+    }
+}
+
 void lightSection(ViewState& state, LightEditor& lights) {
     // The environment: its colour (uniform) or intensity (a map), and its turn; statistics restart.
     glm::vec3 radiance = lights.environmentRadiance();
@@ -157,6 +183,7 @@ void lightSection(ViewState& state, LightEditor& lights) {
         lights.setEnvironmentTurn(turn);
         state.lightsChanged = true;
     }
+    mediaSection(state, lights);
     if (lights.lightCount() == 0) {
         return;
     }
@@ -177,7 +204,7 @@ void lightSection(ViewState& state, LightEditor& lights) {
     }
     ImGui::Checkbox("circle", &state.animateLight);
     ImGui::SameLine();
-    if (ImGui::Button("reset lights")) {
+    if (ImGui::Button("reset lights and media")) {
         lights.reset();
         state.lightsChanged = true;
     }

@@ -1,8 +1,9 @@
 // Moving lights: the scene as loaded, plus an offset per light, applied by Scene::moveLight (which
 // moves what belongs to a light with it: an area light's visible surface, the emissive
 // triangles; a directional light turns instead), and the environment's radiance (a colour for a
-// uniform one, an intensity for a map) and its turn about the vertical. Offsets are
-// applied to the loaded scene, never accumulated into a moved copy, so nothing drifts.
+// uniform one, an intensity for a map) and its turn about the vertical; and each participating
+// medium's density (a factor on its coefficients) and Henyey–Greenstein g. Offsets and factors
+// are applied to the loaded scene, never accumulated into a changed copy, so nothing drifts.
 #pragma once
 
 #include <cstdint>
@@ -36,6 +37,13 @@ public:
     // Degrees the environment is turned about +Y, on top of the scene's own rotation.
     float environmentTurn() const { return environmentTurn_; }
     void setEnvironmentTurn(float degrees) { environmentTurn_ = degrees; }
+    // The scene's participating media: a factor on each one's coefficients (its density), and its g.
+    std::uint32_t mediumCount() const { return std::uint32_t(loaded_.media.size()); }
+    std::string mediumName(std::uint32_t medium) const;
+    float mediumDensity(std::uint32_t medium) const { return mediumDensity_[medium]; }
+    void setMediumDensity(std::uint32_t medium, float factor) { mediumDensity_[medium] = factor; }
+    float mediumG(std::uint32_t medium) const { return mediumG_[medium]; }
+    void setMediumG(std::uint32_t medium, float g) { mediumG_[medium] = g; }
     void reset();
 
     // The loaded scene with every light moved, finalized again (bounds and light sampling).
@@ -47,6 +55,8 @@ private:
     std::vector<glm::vec3> offsets_;
     glm::vec3 environmentRadiance_{0.0f};
     float environmentTurn_ = 0.0f;
+    std::vector<float> mediumDensity_;
+    std::vector<float> mediumG_;
 };
 
 }  // namespace photon::viewer

@@ -24,6 +24,7 @@ struct ViewState {
     float dotsBrightness = 0.5f;       // brightness of a photon of the mean emitted power
     float flySpeed = 0.25f;            // scene diagonals per second
     std::uint32_t selectedLight = 0;
+    std::uint32_t selectedMedium = 0;
     bool animateLight = false;         // the selected light circles about where it was
     bool watchScene = true;            // reload the scene file when it changes on disk
 

@@ -353,7 +353,7 @@ struct Loader {
         if (!scatter.IsObject() || (m.flags & MATERIAL_FLAG_THIN_WALLED) != 0u || m.attenuation == glm::vec3(0.0f)) {
             return;
         }
-        Medium md{};
+        Medium md = homogeneousMedium();
         for (int c = 0; c < 3; ++c) {
             double a = 0.0;
             if (scatter.Has("multiscatterColor") && scatter.Get("multiscatterColor").IsArray() &&
@@ -366,8 +366,6 @@ struct Loader {
             md.absorption[c] = float((1.0 - albedo) * m.attenuation[c]);
         }
         md.g = float(std::clamp(number(scatter, "scatterAnisotropy", 0.0), -0.99, 0.99));
-        md.lower = glm::vec3(-kMediumUnbounded);
-        md.upper = glm::vec3(kMediumUnbounded);
         m.medium = scene.addMedium(md);
         m.attenuation = glm::vec3(0.0f);
     }

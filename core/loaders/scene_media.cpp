@@ -15,7 +15,7 @@ glm::vec3 coefficient(const JsonNode& node) {
 
 Medium readMedium(const JsonNode& node) {
     node.allowKeys({"absorption", "scattering", "density", "albedo", "g"});
-    Medium md{};
+    Medium md = homogeneousMedium();
     bool coefficients = node.has("absorption") || node.has("scattering");
     if (coefficients && (node.has("density") || node.has("albedo"))) {
         node.fail("give absorption and scattering, or density and albedo, not both");
@@ -36,8 +36,6 @@ Medium readMedium(const JsonNode& node) {
     }
     // g = ±1 is a delta: no longer a phase function Henyey–Greenstein can sample.
     md.g = node.has("g") ? node["g"].number({-0.99, 0.99, false, false}) : 0.0f;
-    md.lower = glm::vec3(-kMediumUnbounded);
-    md.upper = glm::vec3(kMediumUnbounded);
     return md;
 }
 

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "core/system/error.h"
 #include "core/system/parallel.h"
 #include "shared/light_types.h"
 #include "shared/material.h"
@@ -144,6 +145,21 @@ std::uint32_t Scene::addMaterial(const std::string& materialName, const Material
 std::uint32_t Scene::addMedium(const Medium& m) {
     media.push_back(m);
     return static_cast<std::uint32_t>(media.size() - 1);
+}
+
+std::uint32_t Scene::addDensityGrid(const DensityGrid& grid) {
+    std::uint64_t voxels = std::uint64_t(grid.resolution.x) * grid.resolution.y * grid.resolution.z;
+    if (voxels == 0 || voxels != grid.density.size()) {
+        throw InputError("a density grid of " + std::to_string(grid.density.size()) + " voxels for " +
+                         std::to_string(voxels) + " places");
+    }
+    if (densities.size() + voxels > kDensityVoxelsMax) {
+        throw InputError("the scene's density grids hold " + std::to_string(densities.size() + voxels) +
+                         " voxels, more than " + std::to_string(kDensityVoxelsMax));
+    }
+    std::uint32_t first = static_cast<std::uint32_t>(densities.size());
+    densities.insert(densities.end(), grid.density.begin(), grid.density.end());
+    return first;
 }
 
 void Scene::fillWithMedium(std::uint32_t index) { medium = index; }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/scene/bvh.h"
+#include "core/scene/density_grid.h"
 #include "core/scene/environment.h"
 #include "core/scene/mesh.h"
 #include "core/settings/settings.h"
@@ -59,6 +60,15 @@ inline constexpr double kMaxSceneSpan = 1e15;
 // The box of a medium that no box bounds (an object's: the object bounds it).
 inline constexpr float kMediumUnbounded = 1e30f;
 
+// A homogeneous medium without coefficients yet, unbounded (its density 1 everywhere: no grid).
+inline Medium homogeneousMedium() {
+    Medium md{};
+    md.grid = NONE;
+    md.lower = glm::vec3(-kMediumUnbounded);
+    md.upper = glm::vec3(kMediumUnbounded);
+    return md;
+}
+
 // "1e+30 wide (z from 0 to 1e+30)": the widest axis of a box, for messages.
 std::string describeSpan(glm::vec3 lo, glm::vec3 hi);
 double widestSpan(glm::vec3 lo, glm::vec3 hi);
@@ -99,9 +109,13 @@ struct Scene {
     // The mesh's triangles, transformed (normals by the inverse transpose; a mirroring transform
     // keeps each triangle's front), as one object. Triangles without area are dropped and counted.
     void addMesh(const Mesh& mesh, const glm::mat4& transform);
-    // A homogeneous participating medium (shared/medium.h); its index, for Material::medium or
-    // fillWithMedium.
+    // A participating medium (shared/medium.h); its index, for Material::medium or fillWithMedium.
+    // Homogeneous unless m.grid names a grid of addDensityGrid.
     std::uint32_t addMedium(const Medium& m);
+    // The voxels of a heterogeneous medium's density (shared/medium_grid.h) into `densities`; the
+    // index of the first, for Medium::grid with the grid's resolution and box. Throws InputError
+    // when the scene's grids together would pass kDensityVoxelsMax.
+    std::uint32_t addDensityGrid(const DensityGrid& grid);
     // The scene is filled with medium `index` within its box; an unbounded box becomes the scene's
     // bounds (finalize()), so that photons and rays leaving the scene leave the medium too.
     void fillWithMedium(std::uint32_t index);

@@ -141,6 +141,13 @@ void computeBounds(Scene& scene) {
         lo = glm::min(lo, glm::min(t.v0, glm::min(t.v1, t.v2)));
         hi = glm::max(hi, glm::max(t.v0, glm::max(t.v1, t.v2)));
     }
+    // A medium's box (a grid's, or one the scene file gave) holds light that the camera sees.
+    for (const Medium& md : scene.media) {
+        if (md.lower.x > -kMediumUnbounded) {
+            lo = glm::min(lo, md.lower);
+            hi = glm::max(hi, md.upper);
+        }
+    }
     for (const Light& l : scene.lights) {
         PH_COVERS(LIGHT_TYPE_COUNT, 7u);
         switch (l.type) {
