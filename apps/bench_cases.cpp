@@ -20,6 +20,15 @@ Scene sceneNamed(const std::string& name, const std::string& scenesDir) {
             return tools::meshBenchScene(std::stoull(name.substr(p.size())), p == "mesh-glass:");
         }
     }
+    if (name.compare(0, 6, "smoke:") == 0) {
+        std::string n = name.substr(6);
+        if (n.empty() || n.size() > 3 || n.find_first_not_of("0123456789") != std::string::npos || std::stoul(n) < 1 ||
+            std::stoul(n) > kDensityResolutionMax / 2) {
+            throw InputError("--scenes: " + name + ": expected smoke:N, N voxels across the plume from 1 to " +
+                             std::to_string(kDensityResolutionMax / 2));
+        }
+        return tools::smokeBenchScene(scenesDir, std::uint32_t(std::stoul(n)));
+    }
     if (name.find('.') != std::string::npos) {
         return loadSceneFile(name);
     }

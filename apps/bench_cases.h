@@ -12,7 +12,8 @@
 
 namespace photon {
 
-// "cornell" (built in), "mesh:N" and "mesh-glass:N" (tools/bench_scenes.h: N triangles), a
+// "cornell" (built in), "mesh:N" and "mesh-glass:N" (tools/bench_scenes.h: N triangles),
+// "smoke:N" (scenes/smoke.json with its plume made by code, N voxels across), a
 // path with an extension (a scene or model file), or a name in the scenes folder.
 Scene sceneNamed(const std::string& name, const std::string& scenesDir);
 

@@ -36,7 +36,7 @@ const std::chrono::steady_clock::time_point kProcessStart = std::chrono::steady_
 
 void addOptions(CLI::App& app, BenchOptions& o) {
     app.add_option("--backends", o.backends, "Comma-separated: cpu,cuda,vulkan");
-    app.add_option("--scenes", o.scenes, "Comma-separated scene names (files in --scenes-dir; cornell is built in)");
+    app.add_option("--scenes", o.scenes, "Comma-separated scene names (files in --scenes-dir; cornell is built in; mesh:N, mesh-glass:N and smoke:N are made by code)");
     app.add_option("--scenes-dir", o.scenesDir, "Where scene files are")->check(kFileName);
     app.add_option("--resolutions", o.resolutions, "Comma-separated WIDTHxHEIGHT");
     app.add_option("--photons", o.photons, "Comma-separated photon paths per frame");

@@ -190,7 +190,7 @@ PH_FN uint tracePrimaryRay(BUF_PARAM uint pixel) {
 
 // The eye ray's way through its medium up to tHit (FLOAT_MAX: it leaves the scene): the light the
 // medium scatters towards the eye joins `volume`, and the path's weight takes the transmittance.
-PH_FN void eyeRayThroughMedium(BUF_PARAM PH_INOUT(vec3) volume, PH_INOUT(vec3) weight, uint medium, PH_IN(Ray) ray,
+PH_FN_OUTLINED void eyeRayThroughMedium(BUF_PARAM PH_INOUT(vec3) volume, PH_INOUT(vec3) weight, uint medium, PH_IN(Ray) ray,
                                float tHit) {
     Medium md = loadMedium(BUF_ARG medium);
     vec2 span = mediumSpan(md, ray.origin, ray.direction, tHit);

@@ -147,7 +147,7 @@ PH_FN uint mediumAcross(BUF_PARAM uint current, PH_IN(Material) m, uint kind, ve
 
 // The transmittance of medium `medium` (NONE: none) from o along d for `distance`, within its box:
 // what reaches through it along a shadow ray.
-PH_FN vec3 mediumTransmittance(BUF_PARAM uint medium, vec3 o, vec3 d, float distance) {
+PH_FN_OUTLINED vec3 mediumTransmittance(BUF_PARAM uint medium, vec3 o, vec3 d, float distance) {
     if (medium == NONE) {
         return vec3(1.0f);
     }

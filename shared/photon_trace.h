@@ -80,7 +80,7 @@ PH_FN PhotonPath startPhotonPath(BUF_PARAM uint index) {
 // it scattered (or ended) there: `store` then says whether `photon` goes to the volume map, and
 // the path has moved on (Henyey–Greenstein, Russian roulette by the flight's weight) or ended.
 // False if it flew through, its power weighted by the transmittance.
-PH_FN bool photonFlight(BUF_PARAM PH_INOUT(PhotonPath) path, float tHit, PH_OUT(Photon) photon, PH_OUT(uint) store) {
+PH_FN_OUTLINED bool photonFlight(BUF_PARAM PH_INOUT(PhotonPath) path, float tHit, PH_OUT(Photon) photon, PH_OUT(uint) store) {
     store = 0u;
     Medium md = loadMedium(BUF_ARG path.medium);
     vec2 span = mediumSpan(md, path.origin, path.direction, tHit);

@@ -142,13 +142,9 @@ TEST(Bvh, TraversalEqualsBruteForceAtLargeAndSmallScales) {
 }
 
 TEST(Bvh, TraversalEqualsBruteForceOnEveryShippedScene) {
-    for (const auto& entry : std::filesystem::directory_iterator(test::scenesDir())) {
-        std::string ext = entry.path().extension().string();
-        if (ext != ".json" && ext != ".glb" && ext != ".gltf") {
-            continue;
-        }
-        SCOPED_TRACE(entry.path().string());
-        Scene s = loadSceneFile(entry.path().string());
+    for (const std::string& path : test::shippedScenes({".json", ".glb", ".gltf"})) {
+        SCOPED_TRACE(path);
+        Scene s = loadSceneFile(path);
         EXPECT_EQ(compareWithBruteForce(s, 20000, 3), 0);
     }
 }

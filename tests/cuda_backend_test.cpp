@@ -210,12 +210,9 @@ TEST_F(CudaVsCpu, FastBuildImagesWithinHalfAPercent) {
 }
 
 TEST_F(CudaVsCpu, EveryShippedSceneRendersWithoutNaN) {
-    for (const auto& entry : std::filesystem::directory_iterator(test::scenesDir())) {
-        if (entry.path().extension() != ".json" && entry.path().extension() != ".glb") {
-            continue;
-        }
-        SCOPED_TRACE(entry.path().string());
-        Scene scene = loadSceneFile(entry.path().string());
+    for (const std::string& path : test::shippedScenes({".json", ".glb"})) {
+        SCOPED_TRACE(path);
+        Scene scene = loadSceneFile(path);
         auto cuda = createRenderer("cuda");
         test::renderFrames(*cuda, scene, test::sizedSettings(scene.render, 64, 48, 20000), 1);
         EXPECT_TRUE(allFinite(cuda->image()));

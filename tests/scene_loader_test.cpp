@@ -54,13 +54,11 @@ std::string renderError(const std::string& render) { return errorOf(sceneWith("r
 
 TEST(SceneLoader, EveryShippedSceneLoads) {
     int count = 0;
-    for (const auto& entry : std::filesystem::directory_iterator(test::scenesDir())) {
-        if (entry.path().extension() == ".json") {
-            SCOPED_TRACE(entry.path().string());
-            Scene scene = loadSceneFile(entry.path().string());
-            EXPECT_FALSE(scene.lights.empty());
-            ++count;
-        }
+    for (const std::string& path : test::shippedScenes({".json"})) {
+        SCOPED_TRACE(path);
+        Scene scene = loadSceneFile(path);
+        EXPECT_FALSE(scene.lights.empty());
+        ++count;
     }
     EXPECT_GT(count, 0);
 }

@@ -14,12 +14,9 @@ namespace {
 
 TEST(ShippedScenes, RenderFiniteAndLit) {
     int scenes = 0;
-    for (const auto& entry : std::filesystem::directory_iterator(test::scenesDir())) {
-        if (entry.path().extension() != ".json") {
-            continue;
-        }
-        SCOPED_TRACE(entry.path().string());
-        Scene scene = loadSceneFile(entry.path().string());
+    for (const std::string& path : test::shippedScenes({".json"})) {
+        SCOPED_TRACE(path);
+        Scene scene = loadSceneFile(path);
         for (Estimator e : {Estimator::Radius, Estimator::Knn, Estimator::Cell, Estimator::Progressive}) {
             RenderSettings s = test::sizedSettings(scene.render, 64, 48, 20000);
             s.estimator = e;

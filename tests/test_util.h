@@ -1,8 +1,12 @@
 // Helpers shared by the tests: Bindings over a host scene, χ² testing, image diff files.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -61,6 +65,29 @@ inline double chiSquareThreshold(int dof, double z = 4.26) {
 inline std::string scenesDir() {
     const char* env = std::getenv("PHOTON_SCENES_DIR");
     return env ? env : PHOTON_SCENES_DIR;
+}
+
+// The shipped scene files with one of `extensions` (".json", ".glb", ...), in a stable order,
+// less those that read OpenVDB files (smoke.json) where the build reads none (PHOTON_OPENVDB=OFF,
+// as on the GPU machine).
+inline std::vector<std::string> shippedScenes(const std::vector<std::string>& extensions) {
+    std::vector<std::string> paths;
+    for (const auto& entry : std::filesystem::directory_iterator(scenesDir())) {
+        std::string ext = entry.path().extension().string();
+        if (std::find(extensions.begin(), extensions.end(), ext) == extensions.end()) {
+            continue;
+        }
+#ifndef PHOTON_TESTS_READ_OPENVDB
+        std::ifstream file(entry.path());
+        std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+        if (ext == ".json" && text.find(".vdb\"") != std::string::npos) {
+            continue;
+        }
+#endif
+        paths.push_back(entry.path().string());
+    }
+    std::sort(paths.begin(), paths.end());
+    return paths;
 }
 
 // The converged references of tests/data/: $PHOTON_TEST_DATA_DIR if set, else the source tree's.

@@ -3,9 +3,12 @@
 #include <string>
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
 
 #include "core/loaders/scene_loader.h"
+#include "core/system/input_file.h"
 #include "mesh_shapes.h"
+#include "smoke_field.h"
 
 namespace photon::tools {
 
@@ -21,6 +24,28 @@ Scene meshBenchScene(std::uint64_t triangles, bool glass) {
                           glm::scale(glm::mat4(1.0f), glm::vec3(0.55f));
     scene.addMesh(mesh, transform);
     scene.name = "mesh-" + std::to_string(scene.triangles.size());
+    scene.finalize();
+    return scene;
+}
+
+Scene smokeBenchScene(const std::string& scenesDir, std::uint32_t resolution) {
+    // smoke.json with its grid's file left out: the same medium, the plume put in its place.
+    std::string text = readInputFile(scenesDir + "/smoke.json", kSceneFileLimit, "scene file");
+    nlohmann::json document = nlohmann::json::parse(text);
+    nlohmann::json& grid = document["media"]["smoke"]["grid"];
+    glm::vec3 lower(grid["min"][0], grid["min"][1], grid["min"][2]);
+    glm::vec3 upper(grid["max"][0], grid["max"][1], grid["max"][2]);
+    document["media"]["smoke"].erase("grid");
+    Scene scene = loadSceneJson(document.dump(), scenesDir + "/smoke.json (its grid made by code)");
+    DensityGrid plume = makeSmokePlume(glm::uvec3(resolution, 2 * resolution, resolution), 1u);
+    plume.lower = lower;
+    plume.upper = upper;
+    Medium& md = scene.media[scene.medium];
+    md.grid = scene.addDensityGrid(plume);
+    md.resolution = plume.resolution;
+    md.lower = lower;
+    md.upper = upper;
+    scene.name = "smoke-" + std::to_string(resolution);
     scene.finalize();
     return scene;
 }

@@ -18,6 +18,6 @@ apt-get install -y -q --no-install-recommends \
   libvulkan-dev vulkan-tools vulkan-validationlayers glslang-tools spirv-cross \
   libglfw3-dev libimgui-dev xvfb xauth x11-apps imagemagick \
   libtinyobjloader-dev libtinygltf-dev libmeshoptimizer-dev libdraco-dev gltfpack assimp-testmodels libbenchmark-dev \
-  clang libclang-rt-14-dev zlib1g-dev libisal-dev libopenexr-dev python3-matplotlib \
+  clang libclang-rt-14-dev zlib1g-dev libisal-dev libopenexr-dev libopenvdb-dev libboost-iostreams-dev python3-matplotlib \
   python3-dev pybind11-dev python3-numpy python3-pytest libopenmpi-dev openmpi-bin
 apt-get install -y -q --no-install-recommends -t bookworm-backports mesa-vulkan-drivers

@@ -548,7 +548,7 @@ Scene loadSceneJson(const std::string& text, const std::string& sourceName, cons
     if (root.has("background")) {
         scene.setBackground(root["background"].rgb(kNonNegative));
     }
-    MediaByName media = root.has("media") ? readMedia(root["media"]) : MediaByName{};
+    MediaByName media = root.has("media") ? readMedia(scene, root["media"], MediaFiles{folder, read}) : MediaByName{};
     readMaterials(scene, root["materials"], media);
     if (root.has("medium")) {
         readSceneMedium(scene, root["medium"], media);

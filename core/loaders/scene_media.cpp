@@ -2,6 +2,9 @@
 
 #include <cmath>
 
+#include "core/loaders/vdb_loader.h"
+#include "core/system/error.h"
+
 namespace photon {
 namespace {
 
@@ -13,8 +16,39 @@ glm::vec3 coefficient(const JsonNode& node) {
     return node.rgb(kNonNegative);
 }
 
-Medium readMedium(const JsonNode& node) {
-    node.allowKeys({"absorption", "scattering", "density", "albedo", "g"});
+// A medium's "grid": {"file": "smoke.vdb", "name": "density", "resolution": 256, "min": [...],
+// "max": [...]}: an OpenVDB file's grid (its first float grid without a name), averaged down to
+// at most `resolution` voxels along an axis, in the box the file places it or in min..max.
+DensityGrid readDensityGrid(const JsonNode& node, const MediaFiles& files) {
+    node.allowKeys({"file", "name", "resolution", "min", "max"});
+    const std::string& name = node["file"].string();
+    if (name.empty()) {
+        node["file"].fail("must not be empty");
+    }
+    std::string gridName = node.has("name") ? node["name"].string() : std::string();
+    std::uint32_t resolution = node.has("resolution") ? node["resolution"].integer(1, kDensityResolutionMax) : 256u;
+    std::string path = name[0] == '/' ? name : files.folder + name;
+    DensityGrid grid;
+    try {
+        grid = decodeVdbDensity(files.read(path, "density grid"), path, gridName, resolution);
+    } catch (const InputError& e) {
+        node["file"].fail(e.what());
+    }
+    if (node.has("min") != node.has("max")) {
+        node.fail("min and max come together");
+    }
+    if (node.has("min")) {
+        grid.lower = node["min"].vec3();
+        grid.upper = node["max"].vec3();
+        if (!(grid.lower.x < grid.upper.x && grid.lower.y < grid.upper.y && grid.lower.z < grid.upper.z)) {
+            node["max"].fail("must exceed min in x, y and z");
+        }
+    }
+    return grid;
+}
+
+Medium readMedium(Scene& scene, const JsonNode& node, const MediaFiles& files) {
+    node.allowKeys({"absorption", "scattering", "density", "albedo", "g", "grid"});
     Medium md = homogeneousMedium();
     bool coefficients = node.has("absorption") || node.has("scattering");
     if (coefficients && (node.has("density") || node.has("albedo"))) {
@@ -36,6 +70,17 @@ Medium readMedium(const JsonNode& node) {
     }
     // g = ±1 is a delta: no longer a phase function Henyey–Greenstein can sample.
     md.g = node.has("g") ? node["g"].number({-0.99, 0.99, false, false}) : 0.0f;
+    if (node.has("grid")) {
+        DensityGrid grid = readDensityGrid(node["grid"], files);
+        try {
+            md.grid = scene.addDensityGrid(grid);
+        } catch (const InputError& e) {
+            node["grid"].fail(e.what());
+        }
+        md.resolution = grid.resolution;
+        md.lower = grid.lower;
+        md.upper = grid.upper;
+    }
     return md;
 }
 
@@ -54,10 +99,10 @@ const Medium& namedMedium(const JsonNode& name, const MediaByName& media) {
 
 }  // namespace
 
-MediaByName readMedia(const JsonNode& node) {
+MediaByName readMedia(Scene& scene, const JsonNode& node, const MediaFiles& files) {
     MediaByName media;
     for (const auto& [name, medium] : node.members()) {
-        media[name] = readMedium(medium);
+        media[name] = readMedium(scene, medium, files);
     }
     return media;
 }
@@ -75,6 +120,9 @@ void readSceneMedium(Scene& scene, const JsonNode& node, const MediaByName& medi
     Medium md = namedMedium(node["name"], media);
     if (node.has("min") != node.has("max")) {
         node.fail("min and max come together");
+    }
+    if (node.has("min") && md.grid != NONE) {
+        node.fail("medium '" + node["name"].string() + "' fills its grid's box: place the grid with its own min and max");
     }
     if (node.has("min")) {
         md.lower = node["min"].vec3();

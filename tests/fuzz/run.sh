@@ -2,7 +2,8 @@
 # Builds the fuzz targets with clang (AddressSanitizer, UBSan, fuzzer coverage over the core and the
 # CPU backend) in their own build directory and runs each for $1 seconds (default 60), seeded from
 # the shipped scenes (scenes/*.json, *.obj), the committed corpus in tests/fuzz/corpus/ (its
-# environment maps are written by photon-make-environment-corpus) and the inputs earlier runs found
+# environment maps are written by photon-make-environment-corpus, its .vdb file by
+# photon-make-smoke-vdb) and the inputs earlier runs found
 # crashes with, in tests/fuzz/findings/ (bad files the loaders must refuse with a message). Exits non-zero if libFuzzer
 # finds a crash, a sanitizer report, a leak or a slow input; the input that did it is left in
 # <build>/fuzz-artifacts/<target>.
@@ -17,7 +18,7 @@ sanitize="-fsanitize=address,undefined,fuzzer-no-link -fno-sanitize-recover=all 
 CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_C_FLAGS="$sanitize" -DCMAKE_CXX_FLAGS="$sanitize" \
   -DPHOTON_FUZZ=ON -DPHOTON_CUDA=OFF -DPHOTON_VULKAN=OFF -DPHOTON_VIEWER=OFF -DPHOTON_TESTS=OFF
-targets=(scene_loader_fuzz render_fuzz obj_loader_fuzz gltf_loader_fuzz environment_loader_fuzz)
+targets=(scene_loader_fuzz render_fuzz obj_loader_fuzz gltf_loader_fuzz environment_loader_fuzz vdb_loader_fuzz)
 cmake --build "$build" --target "${targets[@]}" --parallel "$(nproc)"
 
 status=0
