@@ -8,6 +8,7 @@
 #include "cell_scan.h"
 #include "cuda_check.h"
 #include "device_memory.h"
+#include "shared/medium.h"
 #include "shared/photon_map.h"
 
 namespace photon {
@@ -126,7 +127,9 @@ public:
 
     void runStage(std::uint32_t stage, const FrameParams& params) override {
         use();
-        if (StageLaunch launch = kernels_->stage[stage]) {
+        // The fast build's scenes without media take the kernels compiled without them.
+        const StageKernels* kernels = kernels_ == &kFastKernels && !sceneHasMedia(params) ? &kFastNoMediaKernels : kernels_;
+        if (StageLaunch launch = kernels->stage[stage]) {
             launch(bindings_, config_, stream_);
         } else if (stage == STAGE_BUILD_GRID) {
             buildGrid(params);

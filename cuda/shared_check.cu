@@ -16,6 +16,7 @@
 #include "../shared/light_types.h"
 #include "../shared/map_photon.h"
 #include "../shared/medium.h"
+#include "../shared/medium_grid.h"
 #include "../shared/light_sources.h"
 #include "../shared/emission.h"
 #include "../shared/caustic_aiming.h"

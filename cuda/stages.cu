@@ -1,6 +1,11 @@
 // The kernels of one frame. No light transport here: each kernel maps threads to photons or
 // pixels and calls the shared/ function for its stage. PHOTON_KERNEL_TABLE names the table this
-// compilation defines (kFastKernels or kParityKernels, see stages.h).
+// compilation defines (kFastKernels, kParityKernels or kFastNoMediaKernels, see stages.h).
+// The no-media kernels fold the media's code away in device code only: the host's copies of the
+// shared functions stay the same in every translation unit.
+#if defined(PHOTON_KERNELS_WITHOUT_MEDIA) && defined(__CUDA_ARCH__)
+#define PH_SCENE_HAS_MEDIA false
+#endif
 #include "stages.h"
 
 #include <string>

@@ -44,5 +44,8 @@ struct StageKernels {
 
 extern const StageKernels kFastKernels;
 extern const StageKernels kParityKernels;
+// The fast kernels compiled for scenes without media (PH_SCENE_HAS_MEDIA false in device code,
+// shared/medium.h): their tracing kernels keep the registers they had before media existed.
+extern const StageKernels kFastNoMediaKernels;
 
 }  // namespace photon

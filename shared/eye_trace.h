@@ -215,7 +215,7 @@ PH_FN HitPoint tracePixel(BUF_PARAM uint pixel) {
     for (uint depth = 0u; depth < BUF(params).maxEyeDepth; ++depth) {
         Hit hit;
         bool hits = traceClosest(BUF_ARG ray, hit);
-        if (medium != NONE) {
+        if (PH_SCENE_HAS_MEDIA && medium != NONE) {
             eyeRayThroughMedium(BUF_ARG volume, weight, medium, ray, hits ? hit.t : FLOAT_MAX);
         }
         if (!hits) {

@@ -15,6 +15,14 @@
 #include "rng.h"
 #include "spectral.h"
 
+// Whether the scene may hold media: true, except in the kernels and pipelines made for scenes
+// without any (the Vulkan tracing shaders' specialization constant SCENE_HAS_MEDIA, CUDA's
+// no-media kernels), where every medium's code folds away and the kernels keep the registers they
+// had before media existed.
+#ifndef PH_SCENE_HAS_MEDIA
+#define PH_SCENE_HAS_MEDIA true
+#endif
+
 PH_NAMESPACE_BEGIN
 
 // −ln(u) for u ∈ (0, 1] without a transcendental function, so that every backend computes the
@@ -37,6 +45,10 @@ PH_FN float negativeLog(float u) {
     PH_PRECISE float result = -(float(k) * 0.693147181f + lnM);
     return result;
 }
+
+// Whether a frame's scene holds media (the hosts choose the kernels for scenes without them): the
+// volume map has room only then.
+PH_FN bool sceneHasMedia(PH_IN(FrameParams) params) { return params.grids[MAP_VOLUME].photonCapacity > 0u; }
 
 PH_FN vec3 expNegative3(vec3 x) { return vec3(expNegative(x.x), expNegative(x.y), expNegative(x.z)); }
 
@@ -137,6 +149,9 @@ PH_FN FreeFlight sampleFreeFlight(BUF_PARAM PH_IN(Medium) md, vec3 o, vec3 d, fl
 // and leave the medium as it was. One level: an object inside a medium-filled object sees the
 // scene's medium outside itself.
 PH_FN uint mediumAcross(BUF_PARAM uint current, PH_IN(Material) m, uint kind, vec3 n, vec3 wo, vec3 to) {
+    if (!PH_SCENE_HAS_MEDIA) {
+        return current;
+    }
     float side = dot(wo, n);
     bool crosses = side * dot(to, n) < 0.0f;
     if (!crosses || kind == PRIM_QUAD || kind == PRIM_PLANE) {
@@ -148,7 +163,7 @@ PH_FN uint mediumAcross(BUF_PARAM uint current, PH_IN(Material) m, uint kind, ve
 // The transmittance of medium `medium` (NONE: none) from o along d for `distance`, within its box:
 // what reaches through it along a shadow ray.
 PH_FN_OUTLINED vec3 mediumTransmittance(BUF_PARAM uint medium, vec3 o, vec3 d, float distance) {
-    if (medium == NONE) {
+    if (!PH_SCENE_HAS_MEDIA || medium == NONE) {
         return vec3(1.0f);
     }
     Medium md = loadMedium(BUF_ARG medium);

@@ -130,7 +130,7 @@ PH_FN uint photonBounce(BUF_PARAM PH_INOUT(PhotonPath) path, PH_OUT(Photon) phot
             PH_RESERVE_SLOT(BUF(counters)[COUNTER_ENVIRONMENT_HITS]);
         }
     }
-    if (path.medium != NONE) {
+    if (PH_SCENE_HAS_MEDIA && path.medium != NONE) {
         uint store;
         if (photonFlight(BUF_ARG path, hits ? hit.t : FLOAT_MAX, photon, store)) {
             return store;

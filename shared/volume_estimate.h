@@ -28,11 +28,11 @@ PH_NAMESPACE_BEGIN
 PH_CONST uint BEAM_CELLS_MAX = 27u + 9u * 4096u;  // cells a ray may visit: 4096 steps (a bound for absurd radii)
 
 // The photons of cell c within r of the ray o' + t·d, t ∈ [tStart, tEnd) (o' relative to the
-// grid's origin, as the maps keep positions; `origin` the ray's own). In a heterogeneous medium
-// the transmittance to a photon's t continues the density integral D from `anchor` = (t, D(t)),
-// a place near it along the ray, rather than walking the voxels from the span's start.
-PH_FN vec3 beamCell(BUF_PARAM PH_IN(GridParams) grid, ivec3 c, vec3 o, vec3 origin, vec3 d, vec2 span,
-                    PH_IN(Medium) md, vec2 anchor, uint kernel) {
+// grid's origin, as the maps keep positions). In a heterogeneous medium the density integral D
+// to a photon's t is taken along the line through `anchor` = (t, D(t), dD/dt): exact where the walk
+// has been, the mean density of the walked cell between (within a cell of the photon).
+PH_FN vec3 beamCell(BUF_PARAM PH_IN(GridParams) grid, ivec3 c, vec3 o, vec3 d, vec2 span, PH_IN(Medium) md,
+                    vec3 anchor, uint kernel) {
     vec3 sum = vec3(0.0f);
     if (grid.kind == GRID_BOUNDED) {
         int last = int(grid.resolution) - 1;
@@ -58,7 +58,7 @@ PH_FN vec3 beamCell(BUF_PARAM PH_IN(GridParams) grid, ivec3 c, vec3 o, vec3 orig
             continue;
         }
         float phase = henyeyGreenstein(dot(octDecode(mapPhotonIncoming(p)), d), md.g);
-        float depth = md.grid == NONE ? t - span.x : anchor.y + densityIntegral(BUF_ARG md, origin, d, anchor.x, t);
+        float depth = md.grid == NONE ? t - span.x : max(anchor.y + anchor.z * (t - anchor.x), 0.0f);
         vec3 transmittance = expNegative3(sigmaT * depth);
         PH_PRECISE vec3 contribution = mapPhotonPower(p) * transmittance * (phase * kernelProfile(kernel, d2 / r2));
         sum += contribution;
@@ -105,16 +105,11 @@ PH_FN vec3 beamRadianceEstimate(BUF_PARAM PH_IN(Medium) md, vec3 origin, vec3 d,
     int ahead = 0;
     uint group = 27u;  // cells of the current block or slab
     uint visited = 0u; // of them
-    vec2 anchor = vec2(span.x, 0.0f);  // (t, D(t)) where the walk entered its cell
+    vec3 anchor = vec3(span.x, 0.0f, 0.0f);  // (t, D(t), dD/dt) where the walk has summed D to
     for (uint s = 0u; s < BEAM_CELLS_MAX; ++s) {
         if (visited == group) {
-            float entry = min(min(tNext.x, tNext.y), tNext.z);
-            if (entry >= tEnd) {
+            if (min(min(tNext.x, tNext.y), tNext.z) >= tEnd) {
                 break;
-            }
-            if (md.grid != NONE) {
-                anchor.y += densityIntegral(BUF_ARG md, origin, d, anchor.x, entry);
-                anchor.x = entry;
             }
             axis = tNext.x <= tNext.y && tNext.x <= tNext.z ? 0u : tNext.y <= tNext.z ? 1u : 2u;
             if (axis == 0u) {
@@ -133,11 +128,18 @@ PH_FN vec3 beamRadianceEstimate(BUF_PARAM PH_IN(Medium) md, vec3 origin, vec3 d,
             group = 9u;
             visited = 0u;
         }
+        if (md.grid != NONE && visited == 0u) {
+            // D on to the walked cell's exit: one walk over the voxels a step, none per photon.
+            float reach = min(min(min(tNext.x, tNext.y), tNext.z), span.y);
+            float gained = densityIntegral(BUF_ARG md, origin, d, anchor.x, reach);
+            float along = reach - anchor.x;
+            anchor = vec3(reach, anchor.y + gained, along > 0.0f ? gained / along : 0.0f);
+        }
         int i = int(visited % 3u) - 1;
         int j = int((visited / 3u) % 3u) - 1;
         int k = group == 27u ? int(visited / 9u) - 1 : ahead;
         ivec3 n = axis == 0u ? ivec3(k, i, j) : axis == 1u ? ivec3(i, k, j) : ivec3(i, j, k);
-        sum += beamCell(BUF_ARG grid, cell + n, o, origin, d, span, md, anchor, kernel);
+        sum += beamCell(BUF_ARG grid, cell + n, o, d, span, md, anchor, kernel);
         visited += 1u;
     }
     float r = grid.radius;

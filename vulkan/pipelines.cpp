@@ -247,9 +247,29 @@ VkPipeline Pipelines::gather(std::uint32_t estimator, std::uint32_t globalMode, 
     return gatherVariants_[variant];
 }
 
+VkPipeline Pipelines::tracing(Shader shader, bool hasMedia) {
+    if (shader != kTracePhotons && shader != kTracePixels) {
+        throw std::logic_error("Vulkan: only the tracing shaders have a variant without media");
+    }
+    if (hasMedia) {
+        return pipeline[shader];
+    }
+    VkPipeline& variant = withoutMedia_[shader == kTracePixels ? 1 : 0];
+    if (variant == VK_NULL_HANDLE) {
+        VkBool32 constant = VK_FALSE;
+        VkSpecializationMapEntry entry{4, 0, sizeof(VkBool32)};
+        VkSpecializationInfo specialization{1, &entry, sizeof(constant), &constant};
+        variant = create(shader, &specialization, 0, shader == kTracePixels ? "tracePixels<no media>" : "tracePhotons<no media>");
+    }
+    return variant;
+}
+
 Pipelines::~Pipelines() {
     VkDevice device = context_.device;
     for (VkPipeline p : pipeline) {
+        vkDestroyPipeline(device, p, nullptr);
+    }
+    for (VkPipeline p : withoutMedia_) {
         vkDestroyPipeline(device, p, nullptr);
     }
     for (VkPipeline p : gatherVariants_) {

@@ -61,6 +61,9 @@ public:
     // The gather pipeline specialized for an ESTIMATOR_*, a GLOBAL_* mode and whether the frame
     // starts sppm (sppmStarts), built on first use.
     VkPipeline gather(std::uint32_t estimator, std::uint32_t globalMode, bool sppmStart);
+    // kTracePhotons or kTracePixels for a frame: for scenes without media (hasMedia false), the
+    // pipeline specialized without their code (SCENE_HAS_MEDIA, shared/medium.h), built on first use.
+    VkPipeline tracing(Shader shader, bool hasMedia);
 
     VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;  // BINDING_COUNT buffers: params uniform, the rest storage
     VkPipelineLayout layout = VK_NULL_HANDLE;          // the set, then kPushConstantBytes of push constants
@@ -77,6 +80,7 @@ private:
     const Context& context_;
     static constexpr std::uint32_t kGatherVariants = ESTIMATOR_COUNT * GLOBAL_MODE_COUNT * 2;
     VkPipeline gatherVariants_[kGatherVariants] = {};
+    VkPipeline withoutMedia_[2] = {};  // tracePhotons, tracePixels
 };
 
 }  // namespace photon::vk

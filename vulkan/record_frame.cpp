@@ -6,6 +6,7 @@
 
 #include "device.h"
 #include "glsl/dispatch.h"
+#include "shared/medium.h"
 #include "shared/progressive.h"
 
 namespace photon::vk {
@@ -63,14 +64,18 @@ void VulkanDevice::dispatchPixels(VkCommandBuffer cmd, VkPipeline pipeline, cons
 
 // One invocation per path of both passes.
 void VulkanDevice::tracePhotons(VkCommandBuffer cmd, const FrameParams& params) {
-    dispatch(cmd, pipelines_, kTracePhotons, params.pathCount, GROUP_SIZE);
+    GroupCount groups = groupsFor(params.pathCount, GROUP_SIZE);
+    if (groups.x != 0) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_.tracing(kTracePhotons, sceneHasMedia(params)));
+        vkCmdDispatch(cmd, groups.x, groups.y, 1);
+    }
     // The photons and their counters are written before the grid build reads them.
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
 }
 
 void VulkanDevice::tracePixels(VkCommandBuffer cmd, const FrameParams& params) {
-    dispatchPixels(cmd, pipelines_.pipeline[kTracePixels], params);
+    dispatchPixels(cmd, pipelines_.tracing(kTracePixels, sceneHasMedia(params)), params);
     // The hit points are written before gather reads them.
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);

@@ -457,7 +457,7 @@ std::string vdbGridStream(const std::string& bytes, const VdbLayout& layout, std
     }
     const ValueLayout* value = treeLayout(owner->type);
     if (!value || owner->type != grid.type || (owner->type != kTrees[0].type && owner->type != kTrees[1].type)) {
-        throw InputError(path + ": " + gridLabel(grid.name) + " is a " + printable(owner->type) +
+        throw InputError(path + ": " + gridLabel(grid.name) + " is a " + printable(quote(owner->type)) +
                          "; densities are grids of floats (FloatGrid or DoubleGrid)");
     }
     GridBody own = walkBody(bytes, grid, value, false, valuesMax, path);

@@ -1,6 +1,7 @@
 #include "core/loaders/vdb_loader.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -60,9 +61,17 @@ void initializeOpenVdb() {
 // A grid's name as messages quote it.
 std::string label(const std::string& name) { return printable(quote(name)); }
 
+// A grid's value type as messages show it: "float", "vec3s"; quoted and cut if it is not a word.
+std::string typeLabel(const std::string& type) {
+    std::string value = vdbValueType(type);
+    auto wordChar = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+    bool word = !value.empty() && value.size() <= 24 && std::all_of(value.begin(), value.end(), wordChar);
+    return word ? value : label(value);
+}
+
 // The grids of a file, for the messages that ask for one of them: 'density' (float), 'v' (vec3s).
 std::string gridList(const VdbLayout& layout) {
-    auto entry = [](const VdbGridEntry& g) { return label(g.name) + " (" + printable(vdbValueType(g.type)) + ")"; };
+    auto entry = [](const VdbGridEntry& g) { return label(g.name) + " (" + typeLabel(g.type) + ")"; };
     std::string list;
     for (std::size_t i = 0; i < layout.grids.size() && i < 12; ++i) {
         list += (i ? ", " : "") + entry(layout.grids[i]);
@@ -103,7 +112,7 @@ std::size_t pickGrid(const VdbLayout& layout, const std::string& name, const std
         throw InputError(path + ": " + missing + " in the file; its grids: " + gridList(layout));
     }
     if (!scalar(found)) {
-        throw InputError(path + ": grid " + label(name) + " holds " + printable(vdbValueType(grids[found].type)) +
+        throw InputError(path + ": grid " + label(name) + " holds " + typeLabel(grids[found].type) +
                          " values; densities are grids of floats (FloatGrid or DoubleGrid); the file's grids: " +
                          gridList(layout));
     }
