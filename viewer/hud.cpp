@@ -137,20 +137,26 @@ void renderSection(ViewState& state, const HudInfo& info) {
     }
 }
 
+// A combo box choosing one of `count` (> 0) things by their names; `selected` kept in range.
+template <typename NameOf>
+void pickOne(const char* label, std::uint32_t& selected, std::uint32_t count, NameOf nameOf) {
+    selected = std::min(selected, count - 1);
+    if (ImGui::BeginCombo(label, nameOf(selected).c_str())) {
+        for (std::uint32_t i = 0; i < count; ++i) {
+            if (ImGui::Selectable(nameOf(i).c_str(), i == selected)) {
+                selected = i;
+            }
+        }
+        ImGui::EndCombo();
+    }
+}
+
 // A participating medium's density (a factor on its coefficients) and g; statistics restart.
 void mediaSection(ViewState& state, LightEditor& lights) {
     if (lights.mediumCount() == 0) {
         return;
     }
-    state.selectedMedium = std::min(state.selectedMedium, lights.mediumCount() - 1);
-    if (ImGui::BeginCombo("medium", lights.mediumName(state.selectedMedium).c_str())) {
-        for (std::uint32_t m = 0; m < lights.mediumCount(); ++m) {
-            if (ImGui::Selectable(lights.mediumName(m).c_str(), m == state.selectedMedium)) {
-                state.selectedMedium = m;
-            }
-        }
-        ImGui::EndCombo();
-    }
+    pickOne("medium", state.selectedMedium, lights.mediumCount(), [&](std::uint32_t m) { return lights.mediumName(m); });
     float density = lights.mediumDensity(state.selectedMedium);
     if (ImGui::SliderFloat("density", &density, 1e-2f, 1e2f, "%.3f x", ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp)) {
         lights.setMediumDensity(state.selectedMedium, density);
@@ -187,15 +193,7 @@ void lightSection(ViewState& state, LightEditor& lights) {
     if (lights.lightCount() == 0) {
         return;
     }
-    state.selectedLight = std::min(state.selectedLight, lights.lightCount() - 1);
-    if (ImGui::BeginCombo("light", lights.lightName(state.selectedLight).c_str())) {
-        for (std::uint32_t l = 0; l < lights.lightCount(); ++l) {
-            if (ImGui::Selectable(lights.lightName(l).c_str(), l == state.selectedLight)) {
-                state.selectedLight = l;
-            }
-        }
-        ImGui::EndCombo();
-    }
+    pickOne("light", state.selectedLight, lights.lightCount(), [&](std::uint32_t l) { return lights.lightName(l); });
     glm::vec3 p = lights.position(state.selectedLight);
     float speed = 0.002f * lights.loaded().diagonal();
     if (ImGui::DragFloat3("position", &p.x, speed, 0.0f, 0.0f, "%.3f")) {
