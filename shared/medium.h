@@ -1,11 +1,12 @@
 // Participating media (Jensen & Christensen 1998; pbrt-v4's HomogeneousMedium): an absorption
 // coefficient σa and a scattering coefficient σs per channel, scaled by a density grid in
-// heterogeneous media (medium_grid.h), and Henyey–Greenstein scattering. A medium fills the inside of the objects whose material names it, or the scene
-// (SceneInfo.medium) within a box. Paths carry the medium they are in (PathMedium below).
+// heterogeneous media (medium_grid.h), and Henyey–Greenstein scattering. A medium fills the
+// inside of the objects whose material names it, or the scene (SceneInfo.medium) within a box.
+// Paths carry the medium they are in (mediumAcross below).
 //
 // Photons fly freely through it (sampleFreeFlight) and scatter, leaving a photon in the volume
-// map at each scattering; eye rays take the medium's transmittance analytically and collect the
-// light it scatters towards them from the volume map (volume_estimate.h).
+// map at each scattering; eye rays take the medium's transmittance exactly and collect the light
+// it scatters towards them from the volume map (volume_estimate.h).
 #ifndef PHOTON_SHARED_MEDIUM_H
 #define PHOTON_SHARED_MEDIUM_H
 
