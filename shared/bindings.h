@@ -45,7 +45,7 @@
     X(ENVIRONMENT_CDF, 26u, float, environmentCdf, RO, SCENE)                  \
     X(PHOTON_ORDER, 27u, uint, photonOrder, RW, ORDERED_PHOTON)              \
     X(AOVS, 28u, PixelAov, aovs, RW, AOV_PIXEL)                              \
-    X(DENOISE, 29u, DenoisePixel, denoisePixels, RW, DENOISE_PIXEL)         \
+    X(DENOISE, 29u, uvec4, denoisePlanes, RW, DENOISE_PLANE)                 \
     X(DENOISED, 30u, vec4, denoised, RW, DENOISE_PIXEL)                    \
     X(HISTORY, 31u, HistoryPixel, history, RW, HISTORY_PIXEL)               \
     X(MEDIA, 32u, Medium, media, RO, SCENE)                                 \
@@ -64,7 +64,8 @@ PH_CONST uint BUFFER_PER_ORDERED_PHOTON = 6u;  // ORDER_ARRAYS per photon for de
 PH_CONST uint BUFFER_PER_AOV_PIXEL = 7u;      // width × height when the auxiliary images are kept, else one
 PH_CONST uint BUFFER_PER_DENOISE_PIXEL = 8u;  // width × height when the denoiser runs, else one
 PH_CONST uint BUFFER_PER_HISTORY_PIXEL = 9u;  // width × height when the history follows the camera (reproject.h), else one
-PH_CONST uint BUFFER_SIZE_CLASS_COUNT = 10u;
+PH_CONST uint BUFFER_PER_DENOISE_PLANE = 10u;  // DENOISE_PLANES × width × height when the denoiser runs, else one
+PH_CONST uint BUFFER_SIZE_CLASS_COUNT = 11u;
 
 PH_CONST uint BINDING_PARAMS = 0u;  // FrameParams (uniform)
 #define PH_BINDING_CONSTANT(NAME, b, T, name, access, sizeClass) PH_CONST uint BINDING_##NAME = b;

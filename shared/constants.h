@@ -210,6 +210,15 @@ PH_CONST float DENOISE_SIGMA_ALBEDO = 0.1f;
 PH_CONST uint DENOISE_TEMPORAL_FRAMES = 4u;
 // Demodulation divides by the albedo, at least this (a black surface is not divided by zero).
 PH_CONST float DENOISE_MIN_ALBEDO = 0.01f;
+// The denoiser's images, planes of one uvec4 a pixel in the `denoisePlanes` buffer (plane p of
+// pixel i at p · pixels + i): two of the demodulated radiance and its variance (float bits), which
+// the levels read from and write to in turn, and the packed guides (denoise.h).
+PH_CONST uint DENOISE_PLANE_RADIANCE = 0u;  // and 1
+PH_CONST uint DENOISE_PLANE_GUIDE = 2u;
+PH_CONST uint DENOISE_PLANES = 3u;
+// The guides keep albedos in [0, DENOISE_ALBEDO_RANGE] to 10 bits a channel (only the edge-stopping
+// weight reads them; remodulation reads the pixel's own albedo whole).
+PH_CONST float DENOISE_ALBEDO_RANGE = 2.0f;
 // The denoise stage's passes: the guides and variance (prepare), the levels, then the image
 // (the last level multiplies the albedo back).
 PH_CONST uint DENOISE_PASS_PREPARE = 0u;

@@ -9,6 +9,9 @@
 //   level i  a 5 × 5 B3-spline kernel with holes 2^i, each tap weighted by how alike the two
 //            pixels' normals, depths, albedos and luminances are, the luminance relative to the
 //            standard deviation. The last level multiplies the albedo back.
+// The levels read 32 bytes a tap: the neighbour's radiance and variance, and its guides packed
+// into 16 (DenoiseGuide), each from a plane of its own (constants.h), so that a warp's reads use
+// every byte of the sectors they fetch.
 // Two departures from SVGF, both measured on the Cornell box (docs/denoising.md):
 // - The variance is not filtered from level to level. SVGF divides it by the taps' weights as if
 //   neighbours' noise were independent; a photon map's is not (neighbours share photons: its
@@ -31,6 +34,50 @@ PH_FN float b3Weight(int offset) {
 }
 
 PH_FN bool aovSurface(PH_IN(PixelAov) a) { return dot(a.normal, a.normal) > 1.0e-6f; }
+
+// What the levels compare between two pixels.
+struct DenoiseGuide {
+    vec3 normal;  // unit; 0 where the pixel's paths met no surface
+    vec3 albedo;  // to 10 bits a channel over [0, DENOISE_ALBEDO_RANGE]
+    float depth;
+    float slope;  // |∇z|, depth per pixel
+};
+
+PH_CONST uint DENOISE_SURFACE_BIT = 0x40000000u;
+
+PH_FN uint quantizeAlbedo(float a) {
+    return uint(floor(clamp(a, 0.0f, DENOISE_ALBEDO_RANGE) * (1023.0f / DENOISE_ALBEDO_RANGE) + 0.5f));
+}
+
+// 16 bytes: the normal in octahedral 2 × 16 bits (math.h), the albedo's three 10-bit channels and
+// whether there is a surface, the depth and the slope as they are.
+PH_FN uvec4 packDenoiseGuide(PH_IN(DenoiseGuide) g) {
+    bool surface = dot(g.normal, g.normal) > 0.0f;
+    uint albedo = quantizeAlbedo(g.albedo.x) | (quantizeAlbedo(g.albedo.y) << 10u) | (quantizeAlbedo(g.albedo.z) << 20u);
+    return uvec4(surface ? octEncode(g.normal) : 0u, albedo | (surface ? DENOISE_SURFACE_BIT : 0u),
+                 floatBitsToUint(g.depth), floatBitsToUint(g.slope));
+}
+
+PH_FN DenoiseGuide unpackDenoiseGuide(uvec4 bits) {
+    DenoiseGuide g;
+    g.normal = (bits.y & DENOISE_SURFACE_BIT) != 0u ? octDecode(bits.x) : vec3(0.0f);
+    g.albedo = vec3(float(bits.y & 1023u), float((bits.y >> 10u) & 1023u), float((bits.y >> 20u) & 1023u)) *
+               (DENOISE_ALBEDO_RANGE / 1023.0f);
+    g.depth = uintBitsToFloat(bits.z);
+    g.slope = uintBitsToFloat(bits.w);
+    return g;
+}
+
+// Where plane `plane` of `pixel` lies in the denoisePlanes buffer.
+PH_FN uint denoiseSlot(BUF_PARAM uint plane, uint pixel) { return plane * BUF(params).width * BUF(params).height + pixel; }
+
+PH_FN vec4 denoiseRadiance(BUF_PARAM uint plane, uint pixel) {
+    return uintBitsToFloat(PH_LOAD_UVEC4(BUF(denoisePlanes)[denoiseSlot(BUF_ARG plane, pixel)]));
+}
+
+PH_FN DenoiseGuide denoiseGuide(BUF_PARAM uint pixel) {
+    return unpackDenoiseGuide(PH_LOAD_UVEC4(BUF(denoisePlanes)[denoiseSlot(BUF_ARG DENOISE_PLANE_GUIDE, pixel)]));
+}
 
 // The smaller of the depth differences to the two neighbours along one axis (the side across a
 // depth edge is not the surface's slope); -1 where neither neighbour has a depth.
@@ -103,11 +150,14 @@ PH_FN void denoisePrepare(BUF_PARAM uint pixel) {
 
     float slopeX = depthStep(BUF_ARG x, y, 1, 0, a.depth);
     float slopeY = depthStep(BUF_ARG x, y, 0, 1, a.depth);
-    // Member by member: glslang stores a whole struct with an array member into a buffer with
-    // invalid SPIR-V (the array's stride makes the two struct types differ).
-    BUF(denoisePixels)[pixel].planes[0] = vec4(illumination, variance);
-    BUF(denoisePixels)[pixel].guide = vec4(normal, a.coverage > 0.0f ? a.depth : 0.0f);
-    BUF(denoisePixels)[pixel].albedo = vec4(a.albedo, length(vec2(max(slopeX, 0.0f), max(slopeY, 0.0f))));
+    DenoiseGuide guide;
+    guide.normal = normal;
+    guide.albedo = a.albedo;
+    guide.depth = a.coverage > 0.0f ? a.depth : 0.0f;
+    guide.slope = length(vec2(max(slopeX, 0.0f), max(slopeY, 0.0f)));
+    PH_STORE_UVEC4(BUF(denoisePlanes)[denoiseSlot(BUF_ARG DENOISE_PLANE_RADIANCE, pixel)],
+                   floatBitsToUint(vec4(illumination, variance)));
+    PH_STORE_UVEC4(BUF(denoisePlanes)[denoiseSlot(BUF_ARG DENOISE_PLANE_GUIDE, pixel)], packDenoiseGuide(guide));
 }
 
 // The normal weight x^(2^DENOISE_NORMAL_SQUARINGS), by squarings.
@@ -134,7 +184,7 @@ PH_FN float blurredVariance(BUF_PARAM uint x, uint y, uint plane) {
                 continue;
             }
             float w = (dx == 0 ? 0.5f : 0.25f) * (dy == 0 ? 0.5f : 0.25f);
-            sum += w * BUF(denoisePixels)[uint(qy) * width + uint(qx)].planes[plane].w;
+            sum += w * uintBitsToFloat(BUF(denoisePlanes)[denoiseSlot(BUF_ARG plane, uint(qy) * width + uint(qx))].w);
             weights += w;
         }
     }
@@ -148,21 +198,17 @@ PH_FN void denoiseLevel(BUF_PARAM uint pixel, uint level) {
     uint height = BUF(params).height;
     uint x = pixel % width;
     uint y = pixel / width;
-    uint source = level & 1u;
-    vec4 centre = BUF(denoisePixels)[pixel].planes[source];
-    vec4 guide = BUF(denoisePixels)[pixel].guide;
-    vec4 albedoSlope = BUF(denoisePixels)[pixel].albedo;
-    vec3 normal = vec3(guide);
-    float depth = guide.w;
-    vec3 albedo = vec3(albedoSlope);
+    uint source = DENOISE_PLANE_RADIANCE + (level & 1u);
+    vec4 centre = denoiseRadiance(BUF_ARG source, pixel);
+    DenoiseGuide guide = denoiseGuide(BUF_ARG pixel);
     vec4 filtered = centre;
-    if (dot(normal, normal) > 0.0f) {
+    if (dot(guide.normal, guide.normal) > 0.0f) {
         float luminance = luminanceOf(vec3(centre));
         // Level 0 blurs the variance and passes it on: the levels all use the same.
         float variance = level == 0u ? blurredVariance(BUF_ARG x, y, source) : centre.w;
         float sigmaL = DENOISE_SIGMA_LUMINANCE * sqrt(variance) + 1.0e-6f;
-        float reach = DENOISE_SIGMA_DEPTH * albedoSlope.w;
-        float depthFloor = 1.0e-3f * depth + 1.0e-6f;
+        float reach = DENOISE_SIGMA_DEPTH * guide.slope;
+        float depthFloor = 1.0e-3f * guide.depth + 1.0e-6f;
         int hole = 1 << int(level);
         vec3 sum = vec3(0.0f);
         float weights = 0.0f;
@@ -178,16 +224,16 @@ PH_FN void denoiseLevel(BUF_PARAM uint pixel, uint level) {
                 float w = 1.0f;
                 if (dx != 0 || dy != 0) {
                     uint q = uint(qy) * width + uint(qx);
-                    c = BUF(denoisePixels)[q].planes[source];
+                    c = denoiseRadiance(BUF_ARG source, q);
                     if (!isFinite(vec3(c))) {
                         continue;  // no neighbour's overflow reaches this pixel
                     }
-                    vec4 g = PH_LOAD_VEC4(BUF(denoisePixels)[q].guide);
-                    float wn = normalWeight(max(dot(normal, vec3(g)), 0.0f));
+                    DenoiseGuide g = denoiseGuide(BUF_ARG q);
+                    float wn = normalWeight(max(dot(guide.normal, g.normal), 0.0f));
                     float distance = float(hole) * length(vec2(float(dx), float(dy)));
-                    float wz = abs(depth - g.w) / (reach * distance + depthFloor);
+                    float wz = abs(guide.depth - g.depth) / (reach * distance + depthFloor);
                     float wl = abs(luminance - luminanceOf(vec3(c))) / sigmaL;
-                    vec3 da = abs(albedo - vec3(PH_LOAD_VEC4(BUF(denoisePixels)[q].albedo)));
+                    vec3 da = abs(guide.albedo - g.albedo);
                     float wa = (da.x + da.y + da.z) / DENOISE_SIGMA_ALBEDO;
                     w = wn * exp(-wz - wl - wa);
                 }
@@ -201,7 +247,7 @@ PH_FN void denoiseLevel(BUF_PARAM uint pixel, uint level) {
         }
     }
     if (level + 1u < DENOISE_LEVELS) {
-        BUF(denoisePixels)[pixel].planes[source ^ 1u] = filtered;
+        PH_STORE_UVEC4(BUF(denoisePlanes)[denoiseSlot(BUF_ARG DENOISE_PLANE_RADIANCE + ((level + 1u) & 1u), pixel)], floatBitsToUint(filtered));
         return;
     }
     PixelAov a = BUF(aovs)[pixel];

@@ -267,16 +267,6 @@ struct PH_ALIGN16 HistoryPixel {
     PixelAov aov;
 };
 
-// The denoiser's state of one pixel (denoise.h): the demodulated image and its variance, read
-// from one plane and written to the other by each level, and the guides the levels compare.
-// The guides are vec4s that a tap reads whole: CUDA loads a vec3 and a float beside it as four
-// scalar loads (87% of the sectors the denoiser read were wasted), a vec4 as one.
-struct PH_ALIGN16 DenoisePixel {
-    vec4 planes[2];  // rgb: demodulated radiance, a: its variance
-    vec4 guide;      // xyz: unit mean normal (0: no surface); w: mean depth
-    vec4 albedo;     // rgb: the mean albedo; a: |∇z|, depth per pixel
-};
-
 PH_NAMESPACE_END
 
 #ifdef __cplusplus
@@ -287,8 +277,6 @@ PH_OFFSET(PixelAov, frames, 40);
 PH_SIZE(HistoryPixel, 16 + SURFACE_MAP_COUNT * 16 + 4 * SPPM_COUNT_SLOTS + 16 + 64); PH_OFFSET(HistoryPixel, sppm, 0);
 PH_OFFSET(HistoryPixel, accumulation, 16 + SURFACE_MAP_COUNT * 16 + 4 * SPPM_COUNT_SLOTS);
 PH_OFFSET(HistoryPixel, aov, 16 + SURFACE_MAP_COUNT * 16 + 4 * SPPM_COUNT_SLOTS + 16);
-PH_SIZE(DenoisePixel, 64); PH_OFFSET(DenoisePixel, planes, 0); PH_OFFSET(DenoisePixel, guide, 32);
-PH_OFFSET(DenoisePixel, albedo, 48);
 PH_SIZE(Sphere, 32); PH_OFFSET(Sphere, radius, 12); PH_OFFSET(Sphere, material, 16);
 PH_SIZE(Plane, 32); PH_OFFSET(Plane, offset, 12); PH_OFFSET(Plane, material, 16);
 PH_SIZE(Quad, 64); PH_OFFSET(Quad, material, 12); PH_OFFSET(Quad, edgeU, 16); PH_OFFSET(Quad, area, 28);

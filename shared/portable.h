@@ -50,6 +50,8 @@
 #define PH_COVERS(count, cases)
 #define PH_ALIGN16
 #define PH_LOAD_VEC4(lvalue) (lvalue)
+#define PH_LOAD_UVEC4(lvalue) (lvalue)
+#define PH_STORE_UVEC4(lvalue, value) (lvalue) = (value)
 #define BUF_PARAM
 #define BUF_ARG
 #define BUF(name) name
@@ -90,13 +92,17 @@
 // Buffer structs are multiples of 16 bytes; saying so lets compilers load them 16 bytes at a time
 // (GLM's vec3 alone would make them 4-byte aligned).
 #define PH_ALIGN16 alignas(16)
-// A vec4 member of a buffer element, read whole. nvcc splits a glm::vec4 read into four 4-byte
-// loads when only some components are used (GLSL compilers and the CPU read it as they like);
-// through float4 it is one 16-byte load: the denoiser's taps read their neighbours' guides so.
+// A vec4 or uvec4 in a buffer, read or written whole. GLM's vectors are 4-byte aligned, so nvcc
+// reads and writes them as four 4-byte accesses (GLSL compilers and the CPU do as they like);
+// through float4 and uint4 it is one 16-byte access: the denoiser's taps read their neighbours so.
 #ifdef __CUDACC__
 #define PH_LOAD_VEC4(lvalue) ::photon::loadVec4(&(lvalue))
+#define PH_LOAD_UVEC4(lvalue) ::photon::loadUvec4(&(lvalue))
+#define PH_STORE_UVEC4(lvalue, value) ::photon::storeUvec4(&(lvalue), (value))
 #else
 #define PH_LOAD_VEC4(lvalue) (lvalue)
+#define PH_LOAD_UVEC4(lvalue) (lvalue)
+#define PH_STORE_UVEC4(lvalue, value) (lvalue) = (value)
 #endif
 #define BUF_PARAM const Bindings &bindings,
 #define BUF_ARG bindings,
@@ -113,6 +119,23 @@ __host__ __device__ __forceinline__ glm::vec4 loadVec4(const glm::vec4* p) {
     return glm::vec4(v.x, v.y, v.z, v.w);
 #else
     return *p;
+#endif
+}
+
+__host__ __device__ __forceinline__ glm::uvec4 loadUvec4(const glm::uvec4* p) {
+#ifdef __CUDA_ARCH__
+    uint4 v = *reinterpret_cast<const uint4*>(p);
+    return glm::uvec4(v.x, v.y, v.z, v.w);
+#else
+    return *p;
+#endif
+}
+
+__host__ __device__ __forceinline__ void storeUvec4(glm::uvec4* p, const glm::uvec4& value) {
+#ifdef __CUDA_ARCH__
+    *reinterpret_cast<uint4*>(p) = make_uint4(value.x, value.y, value.z, value.w);
+#else
+    *p = value;
 #endif
 }
 

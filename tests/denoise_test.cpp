@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/render/devices.h"
+#include "shared/denoise.h"
 #include "core/frame/aov_images.h"
 #include "core/image/image_error.h"
 #include "core/loaders/scene_loader.h"
@@ -127,6 +128,31 @@ TEST(Denoise, KeepsTextures) {
 
 // The AOVs of a scene whose every pixel sees a diffuse wall head on: albedo, normal and depth are
 // the wall's, coverage 1; the variance image is finite and not negative.
+// The levels' guides, packed into 16 bytes: the normal to 16-bit octahedral precision, the albedo
+// to 10 bits (clamped to its range), depth and slope as they are, no surface as a zero normal.
+TEST(Denoise, GuidesSurvivePacking) {
+    DenoiseGuide g;
+    g.normal = normalize(vec3(0.3f, -0.8f, -0.52f));
+    g.albedo = vec3(0.0f, 0.731f, 5.0f);
+    g.depth = 12.345f;
+    g.slope = 0.0172f;
+    DenoiseGuide back = unpackDenoiseGuide(packDenoiseGuide(g));
+    EXPECT_NEAR(dot(back.normal, g.normal), 1.0f, 1.0e-7f);
+    EXPECT_NEAR(length(back.normal), 1.0f, 1.0e-6f);
+    EXPECT_EQ(back.albedo.x, 0.0f);
+    EXPECT_NEAR(back.albedo.y, 0.731f, DENOISE_ALBEDO_RANGE / 2046.0f);
+    EXPECT_EQ(back.albedo.z, DENOISE_ALBEDO_RANGE);
+    EXPECT_EQ(back.depth, g.depth);
+    EXPECT_EQ(back.slope, g.slope);
+    // The normal weight of a surface against itself stays 1 after packing.
+    EXPECT_NEAR(normalWeight(dot(back.normal, back.normal)), 1.0f, 1.0e-4f);
+
+    g.normal = vec3(0.0f);
+    back = unpackDenoiseGuide(packDenoiseGuide(g));
+    EXPECT_EQ(back.normal, vec3(0.0f));
+    EXPECT_EQ(back.depth, g.depth);
+}
+
 TEST(Aov, AreTheSurfaceTheCameraSees) {
     Scene s;
     std::uint32_t grey = s.addMaterial("grey", makeDiffuse(glm::vec3(0.25f, 0.5f, 0.75f)));

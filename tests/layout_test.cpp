@@ -82,7 +82,6 @@ const Member kMembers[] = {
     PH_MEMBER(HitPoint, roughness), PH_MEMBER(HitPoint, channel), PH_MEMBER(HitPoint, pathLength), PH_MEMBER(HitPoint, aovAlbedo), PH_MEMBER(HitPoint, aovNormal),
     PH_MEMBER(PixelAov, albedo), PH_MEMBER(PixelAov, depth), PH_MEMBER(PixelAov, normal), PH_MEMBER(PixelAov, coverage),
     PH_MEMBER(PixelAov, luminance), PH_MEMBER(PixelAov, luminance2), PH_MEMBER(PixelAov, background),
-    PH_MEMBER(DenoisePixel, planes), PH_MEMBER(DenoisePixel, guide), PH_MEMBER(DenoisePixel, albedo),
     PH_MEMBER(SppmPixel, direct), PH_MEMBER(SppmPixel, maps), PH_MEMBER(SppmPixel, count),
     PH_MEMBER(SppmFlux, flux), PH_MEMBER(SppmFlux, radius),
 };

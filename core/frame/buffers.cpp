@@ -15,7 +15,7 @@
 
 namespace photon {
 
-static_assert(BUFFER_SIZE_CLASS_COUNT == 10u, "a new BUFFER_PER_* class needs its case in planBuffers and whatToLower");
+static_assert(BUFFER_SIZE_CLASS_COUNT == 11u, "a new BUFFER_PER_* class needs its case in planBuffers and whatToLower");
 
 std::uint64_t BufferPlan::bytes(std::uint32_t binding) const {
     std::uint64_t element = binding == BINDING_PARAMS ? sizeof(FrameParams) : bufferInfo(binding).elementBytes;
@@ -44,6 +44,7 @@ BufferPlan planBuffers(const Scene& scene, const PhotonBudget& budget, std::uint
             case BUFFER_PER_SPPM_PIXEL: n = budget.sppm ? std::uint64_t(width) * height : 1; break;
             case BUFFER_PER_AOV_PIXEL: n = budget.aovs ? std::uint64_t(width) * height : 1; break;
             case BUFFER_PER_DENOISE_PIXEL: n = budget.denoise ? std::uint64_t(width) * height : 1; break;
+            case BUFFER_PER_DENOISE_PLANE: n = budget.denoise ? std::uint64_t(DENOISE_PLANES) * width * height : 1; break;
             case BUFFER_PER_HISTORY_PIXEL: n = budget.history ? std::uint64_t(width) * height : 1; break;
             case BUFFER_PER_ORDERED_PHOTON: n = budget.deterministic ? std::max<std::uint64_t>(ORDER_ARRAYS * std::uint64_t(budget.totalCapacity()), 1) : 1; break;
             default: throw std::logic_error(std::string("buffer ") + info.name + ": unknown size class");
@@ -107,6 +108,7 @@ const char* whatToLower(std::uint32_t sizeClass) {
         case BUFFER_PER_SPPM_PIXEL: return "lower the resolution (--width, --height)";
         case BUFFER_PER_AOV_PIXEL: return "lower the resolution (--width, --height) or keep no auxiliary images (--denoise off, --no-aov)";
         case BUFFER_PER_DENOISE_PIXEL: return "lower the resolution (--width, --height) or turn the denoiser off (--denoise off)";
+        case BUFFER_PER_DENOISE_PLANE: return "lower the resolution (--width, --height) or turn the denoiser off (--denoise off)";
         case BUFFER_PER_HISTORY_PIXEL:
             return "lower the resolution (--width, --height) or restart the image when the camera moves (--no-reproject)";
         case BUFFER_PER_ORDERED_PHOTON:

@@ -43,6 +43,7 @@ Material makePbr(glm::vec3 baseColor, float metallic, float roughness);
 #define PH_SCENE_ONLY_ORDERED_PHOTON(...)
 #define PH_SCENE_ONLY_AOV_PIXEL(...)
 #define PH_SCENE_ONLY_DENOISE_PIXEL(...)
+#define PH_SCENE_ONLY_DENOISE_PLANE(...)
 #define PH_SCENE_ONLY_HISTORY_PIXEL(...)
 #define PH_SCENE_VECTOR(NAME, b, T, name, access, sizeClass) PH_SCENE_ONLY_##sizeClass(std::vector<T> name;)
 
