@@ -37,7 +37,7 @@ PH_FN bool aovSurface(PH_IN(PixelAov) a) { return dot(a.normal, a.normal) > 1.0e
 
 // What the levels compare between two pixels.
 struct DenoiseGuide {
-    vec3 normal;  // unit; 0 where the pixel's paths met no surface
+    vec3 normal;  // as decoded, of length 1/√3 to 1 (normalWeight divides it out); 0: no surface
     vec3 albedo;  // to 10 bits a channel over [0, DENOISE_ALBEDO_RANGE]
     float depth;
     float slope;  // |∇z|, depth per pixel
@@ -60,7 +60,7 @@ PH_FN uvec4 packDenoiseGuide(PH_IN(DenoiseGuide) g) {
 
 PH_FN DenoiseGuide unpackDenoiseGuide(uvec4 bits) {
     DenoiseGuide g;
-    g.normal = (bits.y & DENOISE_SURFACE_BIT) != 0u ? octDecode(bits.x) : vec3(0.0f);
+    g.normal = (bits.y & DENOISE_SURFACE_BIT) != 0u ? octDecodeUnnormalized(bits.x) : vec3(0.0f);
     g.albedo = vec3(float(bits.y & 1023u), float((bits.y >> 10u) & 1023u), float((bits.y >> 20u) & 1023u)) *
                (DENOISE_ALBEDO_RANGE / 1023.0f);
     g.depth = uintBitsToFloat(bits.z);
@@ -160,10 +160,15 @@ PH_FN void denoisePrepare(BUF_PARAM uint pixel) {
     PH_STORE_UVEC4(BUF(denoisePlanes)[denoiseSlot(BUF_ARG DENOISE_PLANE_GUIDE, pixel)], packDenoiseGuide(guide));
 }
 
-// The normal weight x^(2^DENOISE_NORMAL_SQUARINGS), by squarings.
-PH_FN float normalWeight(float x) {
-    float y = x;
-    for (uint i = 0u; i < DENOISE_NORMAL_SQUARINGS; ++i) {
+// The normal weight cos^(2^DENOISE_NORMAL_SQUARINGS) of the angle between the unit normal n and
+// m, of any length (a decoded guide's): (n·m)² / |m|² is cos², squared on; no square root.
+PH_FN float normalWeight(vec3 n, vec3 m) {
+    float d = dot(n, m);
+    if (d <= 0.0f) {
+        return 0.0f;
+    }
+    float y = PH_WEIGHT_DIVIDE(d * d, dot(m, m));
+    for (uint i = 1u; i < DENOISE_NORMAL_SQUARINGS; ++i) {
         y *= y;
     }
     return y;
@@ -203,10 +208,11 @@ PH_FN void denoiseLevel(BUF_PARAM uint pixel, uint level) {
     DenoiseGuide guide = denoiseGuide(BUF_ARG pixel);
     vec4 filtered = centre;
     if (dot(guide.normal, guide.normal) > 0.0f) {
+        vec3 normal = unitVector(guide.normal);
         float luminance = luminanceOf(vec3(centre));
         // Level 0 blurs the variance and passes it on: the levels all use the same.
         float variance = level == 0u ? blurredVariance(BUF_ARG x, y, source) : centre.w;
-        float sigmaL = DENOISE_SIGMA_LUMINANCE * sqrt(variance) + 1.0e-6f;
+        float toSigmasL = 1.0f / (DENOISE_SIGMA_LUMINANCE * sqrt(variance) + 1.0e-6f);
         float reach = DENOISE_SIGMA_DEPTH * guide.slope;
         float depthFloor = 1.0e-3f * guide.depth + 1.0e-6f;
         int hole = 1 << int(level);
@@ -229,13 +235,13 @@ PH_FN void denoiseLevel(BUF_PARAM uint pixel, uint level) {
                         continue;  // no neighbour's overflow reaches this pixel
                     }
                     DenoiseGuide g = denoiseGuide(BUF_ARG q);
-                    float wn = normalWeight(max(dot(guide.normal, g.normal), 0.0f));
+                    float wn = normalWeight(normal, g.normal);
                     float distance = float(hole) * length(vec2(float(dx), float(dy)));
-                    float wz = abs(guide.depth - g.depth) / (reach * distance + depthFloor);
-                    float wl = abs(luminance - luminanceOf(vec3(c))) / sigmaL;
+                    float wz = PH_WEIGHT_DIVIDE(abs(guide.depth - g.depth), reach * distance + depthFloor);
+                    float wl = abs(luminance - luminanceOf(vec3(c))) * toSigmasL;
                     vec3 da = abs(guide.albedo - g.albedo);
-                    float wa = (da.x + da.y + da.z) / DENOISE_SIGMA_ALBEDO;
-                    w = wn * exp(-wz - wl - wa);
+                    float wa = (da.x + da.y + da.z) * (1.0f / DENOISE_SIGMA_ALBEDO);
+                    w = wn * PH_WEIGHT_EXP(-wz - wl - wa);
                 }
                 sum += (h * w) * vec3(c);
                 weights += h * w;

@@ -52,6 +52,8 @@
 #define PH_LOAD_VEC4(lvalue) (lvalue)
 #define PH_LOAD_UVEC4(lvalue) (lvalue)
 #define PH_STORE_UVEC4(lvalue, value) (lvalue) = (value)
+#define PH_WEIGHT_EXP(x) exp(x)
+#define PH_WEIGHT_DIVIDE(a, b) ((a) / (b))
 #define BUF_PARAM
 #define BUF_ARG
 #define BUF(name) name
@@ -103,6 +105,16 @@
 #define PH_LOAD_VEC4(lvalue) (lvalue)
 #define PH_LOAD_UVEC4(lvalue) (lvalue)
 #define PH_STORE_UVEC4(lvalue, value) (lvalue) = (value)
+#endif
+// exp(x) and a / b where the result is only a weight (the denoiser's edge-stopping functions): in
+// CUDA's fast kernels the special-function unit's approximations, which GLSL drivers use for
+// every exp and division anyway; exact on the CPU and in CUDA's parity kernels, which match it.
+#if defined(__CUDA_ARCH__) && !defined(PHOTON_PARITY_KERNELS)
+#define PH_WEIGHT_EXP(x) __expf(x)
+#define PH_WEIGHT_DIVIDE(a, b) __fdividef((a), (b))
+#else
+#define PH_WEIGHT_EXP(x) exp(x)
+#define PH_WEIGHT_DIVIDE(a, b) ((a) / (b))
 #endif
 #define BUF_PARAM const Bindings &bindings,
 #define BUF_ARG bindings,

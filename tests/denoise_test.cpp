@@ -137,15 +137,17 @@ TEST(Denoise, GuidesSurvivePacking) {
     g.depth = 12.345f;
     g.slope = 0.0172f;
     DenoiseGuide back = unpackDenoiseGuide(packDenoiseGuide(g));
-    EXPECT_NEAR(dot(back.normal, g.normal), 1.0f, 1.0e-7f);
-    EXPECT_NEAR(length(back.normal), 1.0f, 1.0e-6f);
+    EXPECT_NEAR(dot(unitVector(back.normal), g.normal), 1.0f, 1.0e-7f);
     EXPECT_EQ(back.albedo.x, 0.0f);
     EXPECT_NEAR(back.albedo.y, 0.731f, DENOISE_ALBEDO_RANGE / 2046.0f);
     EXPECT_EQ(back.albedo.z, DENOISE_ALBEDO_RANGE);
     EXPECT_EQ(back.depth, g.depth);
     EXPECT_EQ(back.slope, g.slope);
-    // The normal weight of a surface against itself stays 1 after packing.
-    EXPECT_NEAR(normalWeight(dot(back.normal, back.normal)), 1.0f, 1.0e-4f);
+    // The normal weight of a surface against itself stays 1 after packing, and is cos^128.
+    EXPECT_NEAR(normalWeight(g.normal, back.normal), 1.0f, 1.0e-4f);
+    vec3 tilted = normalize(g.normal + vec3(0.1f, 0.0f, 0.0f));
+    EXPECT_NEAR(normalWeight(tilted, back.normal), std::pow(dot(tilted, g.normal), 128.0f), 1.0e-3f);
+    EXPECT_EQ(normalWeight(-g.normal, back.normal), 0.0f);
 
     g.normal = vec3(0.0f);
     back = unpackDenoiseGuide(packDenoiseGuide(g));
