@@ -209,24 +209,22 @@ public:
     }
 
 private:
-    // Each map's photons into cell order: count, CUB's scan, then the scatter, or with
-    // deterministic maps the scatter and each cell put in canonical order.
+    // The maps' photons into cell order: count, CUB's scan of each map's cells, then the scatter,
+    // or with deterministic maps the scatter and each cell put in canonical order.
     void buildGrid(const FrameParams& params) {
         const Bindings& b = bindings_;
         const StageKernels& kernels = *kernels_;
-        bool deterministic = (params.flags & FLAG_DETERMINISTIC) != 0u;
+        kernels.countCells(b, config_, stream_);
         for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
             const GridParams& g = params.grids[m];
-            if (g.photonCapacity == 0) {
-                continue;
+            if (g.photonCapacity != 0) {
+                scan_.exclusiveSum(b.cellCounts + g.cellOffset, b.cellStart + g.cellOffset, g.cellCount + 1, stream_);
             }
-            kernels.countCells(b, m, config_, stream_);
-            scan_.exclusiveSum(b.cellCounts + g.cellOffset, b.cellStart + g.cellOffset, g.cellCount + 1, stream_);
-            if (deterministic) {
-                kernels.orderPhotons(b, m, config_, stream_);
-            } else {
-                kernels.scatterPhotons(b, m, config_, stream_);
-            }
+        }
+        if ((params.flags & FLAG_DETERMINISTIC) != 0u) {
+            kernels.orderPhotons(b, config_, stream_);
+        } else {
+            kernels.scatterPhotons(b, config_, stream_);
         }
     }
 

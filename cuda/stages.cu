@@ -44,16 +44,42 @@ __global__ void __launch_bounds__(256, 4) tracePhotonsKernel(const __grid_consta
     }
 }
 
-__global__ void countCellsKernel(const __grid_constant__ Bindings b, uint map) {
-    uint n = storedPhotons(b, map);
-    for (uint i = blockIdx.x * blockDim.x + threadIdx.x; i < n; i += gridDim.x * blockDim.x) {
+// The stored photons of all maps as one range: photon k of it is photon i of map m (returned),
+// counting the maps in order.
+__device__ inline uint storedPhotonsOfAllMaps(const Bindings& b) {
+    uint n = 0u;
+    for (uint m = 0u; m < MAP_COUNT; ++m) {
+        n += storedPhotons(b, m);
+    }
+    return n;
+}
+
+__device__ inline uint mapOfStoredPhoton(const Bindings& b, uint k, uint& i) {
+    i = k;
+    for (uint m = 0u; m + 1u < MAP_COUNT; ++m) {
+        uint n = storedPhotons(b, m);
+        if (i < n) {
+            return m;
+        }
+        i -= n;
+    }
+    return MAP_COUNT - 1u;
+}
+
+__global__ void countCellsKernel(const __grid_constant__ Bindings b) {
+    uint n = storedPhotonsOfAllMaps(b);
+    for (uint k = blockIdx.x * blockDim.x + threadIdx.x; k < n; k += gridDim.x * blockDim.x) {
+        uint i;
+        uint map = mapOfStoredPhoton(b, k, i);
         countPhotonCell(b, map, i);
     }
 }
 
-__global__ void scatterPhotonsKernel(const __grid_constant__ Bindings b, uint map) {
-    uint n = storedPhotons(b, map);
-    for (uint i = blockIdx.x * blockDim.x + threadIdx.x; i < n; i += gridDim.x * blockDim.x) {
+__global__ void scatterPhotonsKernel(const __grid_constant__ Bindings b) {
+    uint n = storedPhotonsOfAllMaps(b);
+    for (uint k = blockIdx.x * blockDim.x + threadIdx.x; k < n; k += gridDim.x * blockDim.x) {
+        uint i;
+        uint map = mapOfStoredPhoton(b, k, i);
         scatterPhoton(b, map, i);
     }
 }
@@ -62,9 +88,11 @@ __global__ void scatterPhotonsKernel(const __grid_constant__ Bindings b, uint ma
 enum OrderStep : uint { kScatterIds, kRank, kMerge };
 
 template <OrderStep Step>
-__global__ void orderStepKernel(const __grid_constant__ Bindings b, uint map) {
-    uint n = storedPhotons(b, map);
-    for (uint i = blockIdx.x * blockDim.x + threadIdx.x; i < n; i += gridDim.x * blockDim.x) {
+__global__ void orderStepKernel(const __grid_constant__ Bindings b) {
+    uint n = storedPhotonsOfAllMaps(b);
+    for (uint k = blockIdx.x * blockDim.x + threadIdx.x; k < n; k += gridDim.x * blockDim.x) {
+        uint i;
+        uint map = mapOfStoredPhoton(b, k, i);
         if constexpr (Step == kScatterIds) {
             scatterPhotonId(b, map, i);
         } else if constexpr (Step == kRank) {
@@ -147,22 +175,22 @@ void tracePhotons(const Bindings& b, const LaunchConfig& c, cudaStream_t s) {
 // Run by the backend in its steps (countCells, its scan, then scatterPhotons or orderPhotons).
 constexpr StageLaunch buildGrid = nullptr;
 
-void countCells(const Bindings& b, std::uint32_t map, const LaunchConfig& c, cudaStream_t s) {
-    countCellsKernel<<<c.gridBlocks, 256, 0, s>>>(b, map);
+void countCells(const Bindings& b, const LaunchConfig& c, cudaStream_t s) {
+    countCellsKernel<<<c.gridBlocks, 256, 0, s>>>(b);
     CUDA_CHECK_LAUNCH("grid build (count)");
 }
 
-void scatterPhotons(const Bindings& b, std::uint32_t map, const LaunchConfig& c, cudaStream_t s) {
-    scatterPhotonsKernel<<<c.gridBlocks, 256, 0, s>>>(b, map);
+void scatterPhotons(const Bindings& b, const LaunchConfig& c, cudaStream_t s) {
+    scatterPhotonsKernel<<<c.gridBlocks, 256, 0, s>>>(b);
     CUDA_CHECK_LAUNCH("grid build (scatter)");
 }
 
-void orderPhotons(const Bindings& b, std::uint32_t map, const LaunchConfig& c, cudaStream_t s) {
-    orderStepKernel<kScatterIds><<<c.gridBlocks, 256, 0, s>>>(b, map);
+void orderPhotons(const Bindings& b, const LaunchConfig& c, cudaStream_t s) {
+    orderStepKernel<kScatterIds><<<c.gridBlocks, 256, 0, s>>>(b);
     CUDA_CHECK_LAUNCH("grid build (scatter ids)");
-    orderStepKernel<kRank><<<c.gridBlocks, 256, 0, s>>>(b, map);
+    orderStepKernel<kRank><<<c.gridBlocks, 256, 0, s>>>(b);
     CUDA_CHECK_LAUNCH("grid build (rank)");
-    orderStepKernel<kMerge><<<c.gridBlocks, 256, 0, s>>>(b, map);
+    orderStepKernel<kMerge><<<c.gridBlocks, 256, 0, s>>>(b);
     CUDA_CHECK_LAUNCH("grid build (merge)");
 }
 

@@ -18,8 +18,8 @@
 //   merge    one invocation per place of the larger cells: the rank within the chunk plus a
 //            binary search in each other chunk of the cell (already in order) gives the rank in
 //            the cell. So a cell of n photons costs n·ORDER_CHUNK + n²/ORDER_CHUNK·log ORDER_CHUNK
-//            loads, not n²: chunks of 256 places (against 1024, and ids apart from indices)
-//            took 87 µs off the caustic scene's grid build on an H200 (docs/performance.md).
+//            loads, not n². Of chunks of 64 to 1024 places, 128 measured fastest on the caustic
+//            scene's focus (docs/performance.md); ids apart from indices halve the loads.
 #ifndef PHOTON_SHARED_PHOTON_MAP_H
 #define PHOTON_SHARED_PHOTON_MAP_H
 
@@ -68,7 +68,7 @@ PH_FN void scatterPhoton(BUF_PARAM uint map, uint i) { placePhoton(BUF_ARG map, 
 // The deterministic build. photonOrder holds four arrays, each laid out as the photon arrays are:
 // at the scatter's places the photon ids and their stored indices, then the same with each chunk
 // in id order. Ids apart from indices halve what the rank loop and the binary searches read.
-PH_CONST uint ORDER_CHUNK = 256u;          // places a rank step counts over (a power of two)
+PH_CONST uint ORDER_CHUNK = 128u;          // places a rank step counts over (a power of two)
 PH_CONST uint ORDER_IDS = 0u;
 PH_CONST uint ORDER_INDICES = 1u;
 PH_CONST uint ORDER_CHUNK_IDS = 2u;

@@ -137,8 +137,8 @@ rm -f "$tmp/huge.json"
 expect 2 "no/such/dir" "$render" "${small[@]}" --frames 1000000 -o "$tmp/no/such/dir/x.png"
 
 # 7. The same seed twice gives the same image, bit for bit: on the CPU always, on a Vulkan device
-#    (lavapipe here) with --deterministic (the last of a flag's forms counts).
-for run in cpu "vulkan --no-deterministic --deterministic"; do
+#    (lavapipe here) by default, and with --deterministic (the last of a flag's forms counts).
+for run in cpu vulkan "vulkan --no-deterministic --deterministic"; do
   read -r backend flags <<<"$run"
   read -ra extra <<<"$flags"
   if "$render" --backend "$backend" --width 40 --height 30 --photons 20000 --frames 2 "${extra[@]}" -q -o "$tmp/r1.pfm" 2>/dev/null; then

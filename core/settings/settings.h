@@ -67,7 +67,7 @@ struct RenderSettings {
     float photonCapacity = 4.0f;          // stored photons reserved per global path (GPU backends)
     std::uint32_t seed = 1;
     bool pixelCenter = false;             // one ray through each pixel centre, no lens
-    bool deterministic = false;           // GPUs order each cell's photons canonically: the same seed
+    bool deterministic = true;            // GPUs order each cell's photons canonically: the same seed
                                           // gives the same image bit for bit (the CPU always does)
     bool spectral = false;                // paths carry wavelengths (shared/spectral.h): dispersion
     float wavelength = 0.0f;              // every path at this wavelength [nm] (implies spectral); 0: sampled
