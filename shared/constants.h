@@ -194,7 +194,7 @@ PH_CONST uint REPROJECT_PASS_RESTORE = 1u;
 PH_CONST uint REPROJECT_PASS_COUNT = 2u;
 
 // The denoiser (denoise.h): an edge-avoiding à-trous wavelet filter guided by variance (Dammertz
-// et al. 2010; Schied et al. 2017, SVGF), DENOISE_LEVELS passes of a 5 × 5 B3-spline kernel with
+// et al. 2010; Schied et al. 2017, SVGF), DENOISE_LEVELS passes of a 3 × 3 binomial kernel with
 // holes 2^level. Its edge-stopping functions: normals max(0, n_p·n_q)^(2^DENOISE_NORMAL_SQUARINGS),
 // depth exp(-|z_p - z_q| / (DENOISE_SIGMA_DEPTH |∇z| |p - q|)), luminance
 // exp(-|l_p - l_q| / (DENOISE_SIGMA_LUMINANCE σ_l)).
