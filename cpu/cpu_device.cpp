@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/system/parallel.h"
+#include "core/system/zeroed_memory.h"
 #include "shared/denoise.h"
 #include "shared/reproject.h"
 #include "shared/eye_trace.h"
@@ -27,25 +28,26 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
 
 std::uint64_t paddedBytes(std::uint64_t bytes) { return (bytes + 15) / 16 * 16; }
 
-// The device's buffers: one 16-byte aligned array per binding, zeroed when sized.
+// The device's buffers: one 16-byte aligned array per binding, zeroed when sized, whose pages
+// cost nothing until a stage writes them (core/system/zeroed_memory.h).
 class HostBuffers {
 public:
     void resize(std::uint32_t binding, std::uint64_t bytes) {
-        storage_[binding].assign(paddedBytes(bytes) / 16, glm::vec4(0.0f));
-        storage_[binding].shrink_to_fit();
+        storage_[binding] = ZeroedMemory();  // before the new one: peak memory is the larger of the two
+        storage_[binding] = ZeroedMemory(paddedBytes(bytes));
     }
     void* data(std::uint32_t binding) { return storage_[binding].data(); }
-    std::uint64_t bytes(std::uint32_t binding) const { return storage_[binding].size() * sizeof(glm::vec4); }
+    std::uint64_t bytes(std::uint32_t binding) const { return storage_[binding].bytes(); }
     std::uint64_t total() const {
         std::uint64_t sum = 0;
-        for (const auto& s : storage_) {
-            sum += s.size() * sizeof(glm::vec4);
+        for (const ZeroedMemory& s : storage_) {
+            sum += s.bytes();
         }
         return sum;
     }
 
 private:
-    std::vector<glm::vec4> storage_[BINDING_COUNT];
+    ZeroedMemory storage_[BINDING_COUNT];
 };
 
 class CpuDevice final : public Device {
