@@ -315,8 +315,9 @@ PH_FN TraceResult traceRay(BUF_PARAM PH_IN(Ray) ray, uint query) {
         traceLeaf(BUF_ARG 0u, BUF(params).scene.linearCount, ray, frame, query, result);
         return result;
     }
-    uint stackCode[BVH_STACK_SIZE];
-    float stackEntry[BVH_STACK_SIZE];
+    // A waiting child's code and entry distance side by side: one 8-byte access where a GPU keeps
+    // the stack in local memory.
+    uvec2 stack[BVH_STACK_SIZE];
     uint depth = 0u;
     uint code = 0u;  // the root
     while (true) {
@@ -353,18 +354,15 @@ PH_FN TraceResult traceRay(BUF_PARAM PH_IN(Ray) ray, uint query) {
             orderChildren(e1, c1, e3, c3);
             orderChildren(e1, c1, e2, c2);
             if (e3 < FLOAT_MAX) {
-                stackCode[depth] = c3;
-                stackEntry[depth] = e3;
+                stack[depth] = uvec2(c3, floatBitsToUint(e3));
                 depth += 1u;
             }
             if (e2 < FLOAT_MAX) {
-                stackCode[depth] = c2;
-                stackEntry[depth] = e2;
+                stack[depth] = uvec2(c2, floatBitsToUint(e2));
                 depth += 1u;
             }
             if (e1 < FLOAT_MAX) {
-                stackCode[depth] = c1;
-                stackEntry[depth] = e1;
+                stack[depth] = uvec2(c1, floatBitsToUint(e1));
                 depth += 1u;
             }
             if (e0 < FLOAT_MAX) {
@@ -376,8 +374,9 @@ PH_FN TraceResult traceRay(BUF_PARAM PH_IN(Ray) ray, uint query) {
         bool next = false;
         while (depth > 0u && !next) {
             depth -= 1u;
-            code = stackCode[depth];
-            next = stackEntry[depth] < result.t;
+            uvec2 waiting = stack[depth];
+            code = waiting.x;
+            next = uintBitsToFloat(waiting.y) < result.t;
         }
         if (!next) {
             break;

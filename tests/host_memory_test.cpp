@@ -1,0 +1,59 @@
+// ZeroedMemory: zero, aligned, writable and movable, for small arrays (calloc) and large (mapped).
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstring>
+#include <utility>
+
+#include "core/system/host_memory.h"
+
+namespace photon {
+namespace {
+
+bool allZero(const void* data, std::size_t bytes) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < bytes; ++i) {
+        if (p[i] != 0) {
+            return false;
+        }
+    }
+    return true;
+}
+
+TEST(ZeroedMemory, SmallAndLargeArraysAreZeroAlignedAndWritable) {
+    for (std::size_t bytes : {std::size_t(16), std::size_t(4096), (std::size_t(2) << 20) - 16, std::size_t(2) << 20,
+                              (std::size_t(5) << 20) + 48}) {
+        ZeroedMemory m(bytes);
+        ASSERT_NE(m.data(), nullptr) << bytes;
+        EXPECT_EQ(m.bytes(), bytes);
+        EXPECT_EQ(reinterpret_cast<std::uintptr_t>(m.data()) % 16, 0u) << bytes;
+        EXPECT_TRUE(allZero(m.data(), bytes)) << bytes;
+        std::memset(m.data(), 0xab, bytes);
+        EXPECT_EQ(static_cast<unsigned char*>(m.data())[bytes - 1], 0xab);
+    }
+}
+
+TEST(ZeroedMemory, EmptyHasNoData) {
+    ZeroedMemory m(0);
+    EXPECT_EQ(m.data(), nullptr);
+    EXPECT_EQ(m.bytes(), 0u);
+}
+
+TEST(ZeroedMemory, MovesOwnership) {
+    ZeroedMemory a(std::size_t(3) << 20);
+    void* data = a.data();
+    ZeroedMemory b(std::move(a));
+    EXPECT_EQ(b.data(), data);
+    EXPECT_EQ(a.data(), nullptr);
+    EXPECT_EQ(a.bytes(), 0u);
+    ZeroedMemory c(64);
+    c = std::move(b);
+    EXPECT_EQ(c.data(), data);
+    EXPECT_EQ(c.bytes(), std::size_t(3) << 20);
+    c = ZeroedMemory(32);  // the mapping is released, calloc's memory taken
+    EXPECT_EQ(c.bytes(), 32u);
+    EXPECT_TRUE(allZero(c.data(), 32));
+}
+
+}  // namespace
+}  // namespace photon
