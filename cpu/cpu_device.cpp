@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/system/parallel.h"
-#include "core/system/zeroed_memory.h"
+#include "core/system/host_memory.h"
 #include "shared/denoise.h"
 #include "shared/reproject.h"
 #include "shared/eye_trace.h"
@@ -29,7 +29,7 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
 std::uint64_t paddedBytes(std::uint64_t bytes) { return (bytes + 15) / 16 * 16; }
 
 // The device's buffers: one 16-byte aligned array per binding, zeroed when sized, whose pages
-// cost nothing until a stage writes them (core/system/zeroed_memory.h).
+// cost nothing until a stage writes them (core/system/host_memory.h).
 class HostBuffers {
 public:
     void resize(std::uint32_t binding, std::uint64_t bytes) {

@@ -1,9 +1,11 @@
-// ZeroedMemory: zero, aligned, writable and movable, for small arrays (calloc) and large (mapped).
+// Host memory for large arrays: ZeroedMemory is zero, aligned, writable and movable, for small
+// arrays (calloc) and large (mapped); huge-page advice leaves memory as it was.
 #include <gtest/gtest.h>
 
 #include <cstdint>
 #include <cstring>
 #include <utility>
+#include <vector>
 
 #include "core/system/host_memory.h"
 
@@ -20,7 +22,7 @@ bool allZero(const void* data, std::size_t bytes) {
     return true;
 }
 
-TEST(ZeroedMemory, SmallAndLargeArraysAreZeroAlignedAndWritable) {
+TEST(HostMemory, ZeroedMemorySmallAndLargeArraysAreZeroAlignedAndWritable) {
     for (std::size_t bytes : {std::size_t(16), std::size_t(4096), (std::size_t(2) << 20) - 16, std::size_t(2) << 20,
                               (std::size_t(5) << 20) + 48}) {
         ZeroedMemory m(bytes);
@@ -33,13 +35,13 @@ TEST(ZeroedMemory, SmallAndLargeArraysAreZeroAlignedAndWritable) {
     }
 }
 
-TEST(ZeroedMemory, EmptyHasNoData) {
+TEST(HostMemory, ZeroedMemoryEmptyHasNoData) {
     ZeroedMemory m(0);
     EXPECT_EQ(m.data(), nullptr);
     EXPECT_EQ(m.bytes(), 0u);
 }
 
-TEST(ZeroedMemory, MovesOwnership) {
+TEST(HostMemory, ZeroedMemoryMovesOwnership) {
     ZeroedMemory a(std::size_t(3) << 20);
     void* data = a.data();
     ZeroedMemory b(std::move(a));
@@ -53,6 +55,21 @@ TEST(ZeroedMemory, MovesOwnership) {
     c = ZeroedMemory(32);  // the mapping is released, calloc's memory taken
     EXPECT_EQ(c.bytes(), 32u);
     EXPECT_TRUE(allZero(c.data(), 32));
+}
+
+TEST(HostMemory, HugePageAdviceKeepsContents) {
+    std::vector<std::uint32_t> v;
+    v.reserve(std::size_t(3) << 20);
+    adviseHugePages(v.data(), v.capacity() * sizeof(std::uint32_t));
+    for (std::uint32_t i = 0; i < (3u << 20); ++i) {
+        v.push_back(i * 2654435761u);
+    }
+    adviseHugePages(v.data() + 1, 100);      // small and unaligned: nothing
+    adviseHugePages(v.data() + 3, v.size() * sizeof(std::uint32_t) - 12);  // unaligned within
+    adviseHugePages(nullptr, std::size_t(8) << 20);
+    for (std::uint32_t i = 0; i < (3u << 20); ++i) {
+        ASSERT_EQ(v[i], i * 2654435761u) << i;
+    }
 }
 
 }  // namespace

@@ -38,6 +38,7 @@
 #include "core/scene/scene.h"
 #include "core/scene/sized_on_helper.h"
 #include "core/system/error.h"
+#include "core/system/host_memory.h"
 #include "core/system/parallel.h"
 #include "shared/intersect.h"
 
@@ -54,8 +55,10 @@ double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(
 void prepare(Primitives& p, std::size_t total) {
     for (auto& c : p.centroid) {
         c.reset(new float[total]);
+        adviseHugePages(c.get(), total * sizeof(float));
     }
     p.index.reset(new std::uint32_t[total]);
+    adviseHugePages(p.index.get(), total * sizeof(std::uint32_t));
     constexpr std::size_t kPrepareChunk = 1u << 16;
     parallelFor((total + kPrepareChunk - 1) / kPrepareChunk, 1, [&](std::size_t a, std::size_t b) {
         for (auto i = std::uint32_t(a * kPrepareChunk); i < std::min(total, b * kPrepareChunk); ++i) {

@@ -4,6 +4,7 @@
 
 #include "core/scene/bvh_build.h"
 #include "core/system/error.h"
+#include "core/system/host_memory.h"
 #include "core/system/parallel.h"
 
 namespace photon::bvh_build {
@@ -33,6 +34,8 @@ public:
         if (s->capacity < size) {
             s->boxes.reset(new PrimBox[size]);
             s->ids.reset(new std::uint32_t[size]);
+            adviseHugePages(s->boxes.get(), size * sizeof(PrimBox));
+            adviseHugePages(s->ids.get(), size * sizeof(std::uint32_t));
             s->capacity = size;
         }
         return s;
@@ -85,6 +88,7 @@ public:
             Pending stack[kStack];
             int top = 0;
             s.nodes.reserve(count / 2 + 1);
+            adviseHugePages(s.nodes.data(), s.nodes.capacity() * sizeof(BvhNode));
             stack[top++] = {Slot{NONE, false}, Range{0, count, box, bounds, s.depth}};
             while (top > 0) {
                 Pending p = stack[--top];

@@ -1,13 +1,15 @@
 // A vector sized on a helper thread while the caller goes on working: a vector's resize zeroes
 // its memory on one thread, and the first touch of fresh memory is a page fault per 4 KiB (at 10M
-// triangles tens of milliseconds an array on the 2-core machine). The BVH build sizes its output
-// arrays so while it builds.
+// triangles tens of milliseconds an array on the 2-core machine, fewer in huge pages). The BVH
+// build sizes its output arrays so while it builds.
 #pragma once
 
 #include <exception>
 #include <system_error>
 #include <thread>
 #include <vector>
+
+#include "core/system/host_memory.h"
 
 namespace photon {
 
@@ -21,6 +23,7 @@ public:
             try {
                 v_.clear();
                 v_.reserve(capacity);
+                adviseHugePages(v_.data(), capacity * sizeof(T));
                 v_.resize(size);
             } catch (...) {
                 failure_ = std::current_exception();
