@@ -8,6 +8,7 @@
 #endif
 #include "stages.h"
 
+#include <algorithm>
 #include <string>
 
 #include "core/system/error.h"
@@ -37,11 +38,8 @@ constexpr int gatherMinBlocks(uint globalMode) { return globalMode == GLOBAL_DIR
 
 // At most 64 registers (4 blocks of 256 on an SM): the traversal's stack would otherwise cost a
 // quarter of the resident warps for a few spilled values.
-__global__ void __launch_bounds__(256, 4) tracePhotonsKernel(const __grid_constant__ Bindings b, uint paths) {
-    uint i = blockIdx.x * blockDim.x + threadIdx.x;
-    if (i < paths) {
-        traceSharedPhotonPath(b, i);
-    }
+__global__ void __launch_bounds__(256, 4) tracePhotonsKernel(const __grid_constant__ Bindings b) {
+    tracePhotonPool(b);
 }
 
 // The stored photons of all maps as one range: photon k of it is photon i of map m (returned),
@@ -163,13 +161,23 @@ dim3 pixelGrid(const Bindings& b, const LaunchConfig& c) {
     return dim3((b.params.width + c.pixelBlockX - 1) / c.pixelBlockX, (b.params.height + c.pixelBlockY - 1) / c.pixelBlockY);
 }
 
-// Paths [0, pathCount), appending photons to both maps.
+// Paths [0, pathCount), appending photons to the maps: as many blocks of the pool as the device
+// holds at once (more would only start once the paths are taken), fewer for fewer paths.
 void tracePhotons(const Bindings& b, const LaunchConfig& c, cudaStream_t s) {
     uint paths = b.params.pathCount;
-    if (paths > 0) {
-        tracePhotonsKernel<<<(paths + c.photonBlock - 1) / c.photonBlock, c.photonBlock, 0, s>>>(b, paths);
-        CUDA_CHECK_LAUNCH("tracePhotons");
+    if (paths == 0) {
+        return;
     }
+    int device = 0;
+    int processors = 0;
+    int resident = 0;
+    CUDA_CHECK(cudaGetDevice(&device), "tracePhotons");
+    CUDA_CHECK(cudaDeviceGetAttribute(&processors, cudaDevAttrMultiProcessorCount, device), "tracePhotons");
+    CUDA_CHECK(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&resident, tracePhotonsKernel, int(c.photonBlock), 0),
+               "tracePhotons");
+    uint blocks = std::min((paths + c.photonBlock - 1) / c.photonBlock, uint(std::max(processors * resident, 1)));
+    tracePhotonsKernel<<<blocks, c.photonBlock, 0, s>>>(b);
+    CUDA_CHECK_LAUNCH("tracePhotons");
 }
 
 // Run by the backend in its steps (countCells, its scan, then scatterPhotons or orderPhotons).

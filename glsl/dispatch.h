@@ -17,6 +17,11 @@ PH_CONST uint PIXEL_TILE_X = uint(PHOTON_PIXEL_TILE_X);
 PH_CONST uint PIXEL_TILE_Y = 8u;
 PH_CONST uint MAX_GROUPS_X = 65535u;  // the smallest maxComputeWorkGroupCount[0] Vulkan allows;
                                       // larger dispatches wrap into y
+// Invocations of the photon pass's pool (shared/photon_trace.h, tracePhotonPool), fewer for fewer
+// paths: at least as many as the largest GPUs hold at once (an H100's 132 multiprocessors × 2048),
+// since Vulkan does not say how many that is; groups beyond them start once the paths are taken,
+// and end at once.
+PH_CONST uint PHOTON_POOL = 1u << 19;
 PH_CONST uint SCAN_ITEMS = 4u;        // cells each invocation of the scan sums in sequence
 
 // The counters buffer: the COUNTER_* slots, then the indirect-dispatch arguments (x, y, z

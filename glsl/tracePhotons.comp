@@ -1,5 +1,6 @@
 #version 460
-// Stage tracePhotons: one invocation per photon path of both passes (this renderer's share).
+// Stage tracePhotons: a pool of invocations over the photon paths of both passes (this renderer's
+// share), each taking the next path when its own ends.
 #extension GL_GOOGLE_include_directive : require
 // Pipelines for scenes without media are made with this false: their code folds away (medium.h).
 layout(constant_id = 4) const bool SCENE_HAS_MEDIA = true;
@@ -11,5 +12,5 @@ layout(constant_id = 4) const bool SCENE_HAS_MEDIA = true;
 layout(local_size_x = GROUP_SIZE) in;
 
 void main() {
-    traceSharedPhotonPath(invocationIndex());
+    tracePhotonPool();
 }

@@ -135,7 +135,8 @@ PH_CONST uint SPPM_RADIUS_BINS = 64u;                // sppm: pixels with photon
 PH_CONST uint COUNTER_SPPM_HISTOGRAM = 2u * MAP_COUNT;  // each map's bins, in map order
 PH_CONST uint COUNTER_ENVIRONMENT_PATHS = COUNTER_SPPM_HISTOGRAM + MAP_COUNT * SPPM_RADIUS_BINS;  // global-pass photons the environment emitted
 PH_CONST uint COUNTER_ENVIRONMENT_HITS = COUNTER_ENVIRONMENT_PATHS + 1u;  // ... whose first ray met the scene
-PH_CONST uint COUNTER_COUNT = COUNTER_ENVIRONMENT_HITS + 1u;
+PH_CONST uint COUNTER_PATHS_TAKEN = COUNTER_ENVIRONMENT_HITS + 1u;  // paths a GPU's photon pool has handed out
+PH_CONST uint COUNTER_COUNT = COUNTER_PATHS_TAKEN + 1u;
 
 // sppm: photon counts per pixel, a slot per map (a multiple of 4: SppmPixel stays 16-byte sized).
 PH_CONST uint SPPM_COUNT_SLOTS = 4u;

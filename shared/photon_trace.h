@@ -207,6 +207,19 @@ PH_FN void appendPhoton(BUF_PARAM uint map, PH_IN(Photon) photon) {
     }
 }
 
+// Photons of one bounce into the maps that `store` names.
+PH_FN void appendStored(BUF_PARAM uint store, PH_IN(Photon) photon) {
+    if ((store & STORE_GLOBAL) != 0u) {
+        appendPhoton(BUF_ARG MAP_GLOBAL, photon);
+    }
+    if ((store & STORE_CAUSTIC) != 0u) {
+        appendPhoton(BUF_ARG MAP_CAUSTIC, photon);
+    }
+    if ((store & STORE_VOLUME) != 0u) {
+        appendPhoton(BUF_ARG MAP_VOLUME, photon);
+    }
+}
+
 // STAGE_TRACE_PHOTONS, for one path index in [0, globalPaths + causticPaths). A path's random
 // numbers and photon ids come from its index alone, so renderers that split a frame's paths
 // between them (FrameParams.pathFirst, pathCount) trace, together, the photons one would.
@@ -215,15 +228,7 @@ PH_FN void tracePhotonPath(BUF_PARAM uint index) {
     while (photonPathAlive(path)) {
         Photon photon;
         uint store = photonBounce(BUF_ARG path, photon);
-        if ((store & STORE_GLOBAL) != 0u) {
-            appendPhoton(BUF_ARG MAP_GLOBAL, photon);
-        }
-        if ((store & STORE_CAUSTIC) != 0u) {
-            appendPhoton(BUF_ARG MAP_CAUSTIC, photon);
-        }
-        if ((store & STORE_VOLUME) != 0u) {
-            appendPhoton(BUF_ARG MAP_VOLUME, photon);
-        }
+        appendStored(BUF_ARG store, photon);
     }
 }
 
@@ -231,6 +236,33 @@ PH_FN void tracePhotonPath(BUF_PARAM uint index) {
 PH_FN void traceSharedPhotonPath(BUF_PARAM uint i) {
     if (i < BUF(params).pathCount) {
         tracePhotonPath(BUF_ARG BUF(params).pathFirst + i);
+    }
+}
+
+// STAGE_TRACE_PHOTONS on a GPU: a pool of invocations, each taking the share's next path
+// (COUNTER_PATHS_TAKEN) whenever its own ends. One path an invocation keeps a warp's lanes idle
+// while its longest path goes on: paths end by Russian roulette after 1 to maxPhotonDepth
+// bounces, and the caustic pass's paths through a glass mesh are the longest. Taking new paths
+// keeps the lanes bouncing (path regeneration: Novák, Havran and Dachsbacher 2010). The photons
+// are tracePhotonPath's over every path of the share; only the order they are appended in
+// changes (and the deterministic maps' canonical order does not).
+PH_FN void tracePhotonPool(BUF_PARAM_ALONE) {
+    PhotonPath path;
+    path.flags = 0u;
+    for (;;) {
+        if (!photonPathAlive(path)) {
+            uint i = PH_RESERVE_SLOT(BUF(counters)[COUNTER_PATHS_TAKEN]);
+            if (i >= BUF(params).pathCount) {
+                return;
+            }
+            path = startPhotonPath(BUF_ARG BUF(params).pathFirst + i);
+        }
+        // Lanes that took a path bounce with those that went on, in the same pass of the loop.
+        if (photonPathAlive(path)) {
+            Photon photon;
+            uint store = photonBounce(BUF_ARG path, photon);
+            appendStored(BUF_ARG store, photon);
+        }
     }
 }
 

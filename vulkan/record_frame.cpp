@@ -1,6 +1,7 @@
 // One frame as commands: the parameters, then the stages of shared/stages.h in the order the
 // Renderer runs them, each with the barrier that orders its writes before the next stage's reads,
 // and a timestamp after it.
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -62,9 +63,9 @@ void VulkanDevice::dispatchPixels(VkCommandBuffer cmd, VkPipeline pipeline, cons
     vkCmdDispatch(cmd, tilesX, tilesY, 1);
 }
 
-// One invocation per path of both passes.
+// The pool over the paths of both passes.
 void VulkanDevice::tracePhotons(VkCommandBuffer cmd, const FrameParams& params) {
-    GroupCount groups = groupsFor(params.pathCount, GROUP_SIZE);
+    GroupCount groups = groupsFor(std::min(params.pathCount, PHOTON_POOL), GROUP_SIZE);
     if (groups.x != 0) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_.tracing(kTracePhotons, sceneHasMedia(params)));
         vkCmdDispatch(cmd, groups.x, groups.y, 1);
