@@ -5,7 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "apps/cuda_launch_bench.h"
+#include "apps/launch_bench.h"
 #include "apps/render_options.h"
 #include "core/render/scene_stats.h"
 #include "core/frame/buffers.h"
@@ -215,7 +215,7 @@ void benchFrameTimes(const BenchOptions& o, const CaseLists& lists, Clock::time_
                 rows.push_back(r);
             };
             for (const Case& c : casesFor(scene, lists)) {
-                if (c.launchSweep && backendName == "cuda") {
+                if (c.launchSweep && (backendName == "cuda" || backendName == "vulkan")) {
                     sweepLaunchShapes(*backend, [&](const std::string& shape) { add(c.settings, shape); });
                 } else {
                     add(c.settings, c.variant);

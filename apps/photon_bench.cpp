@@ -47,7 +47,7 @@ void addOptions(CLI::App& app, BenchOptions& o) {
     app.add_option("--vary", o.vary, "KEY=V1,V2,...: also measure each value of a scene-file render setting "
                                    "(cell_size, gather_budget, radius, caustic_radius, caustic_fraction, estimator, ...)");
     app.add_option("--grid-sweep", o.gridSweep, "Comma-separated photon counts: grid build rate at 320x240");
-    addSwitch(app, "--launch-sweep", o.launchSweep, "CUDA: sweep block shapes of every stage");
+    addSwitch(app, "--launch-sweep", o.launchSweep, "GPU backends: sweep launch shapes (CUDA: blocks of every stage; both: the sppm gather's pool)");
     addSwitch(app, "--primary-rays", o.primaryRays, "CUDA: also time primary rays alone (nearest hit, no shading) per case");
     app.add_option("--bvh-builds", o.bvhBuilds, "Time only the BVH build of each scene, this many times (no frames)")
         ->check(CLI::Range(1u, 10000u));

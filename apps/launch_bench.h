@@ -1,6 +1,7 @@
-// photon-bench's CUDA-only measurements, next to the timing table's: launch shapes
-// (--launch-sweep), image readback (--readback) and primary rays alone (--primary-rays). Without
-// the CUDA backend (PHOTON_HAVE_CUDA) they do nothing.
+// photon-bench's measurements of the GPU backends' launches, next to the timing table's: launch
+// shapes (--launch-sweep; CUDA and Vulkan), and on CUDA image readback (--readback) and primary
+// rays alone (--primary-rays). Without the backend (PHOTON_HAVE_CUDA, PHOTON_HAVE_VULKAN) they do
+// nothing.
 #pragma once
 
 #include <cstdint>
@@ -11,8 +12,10 @@
 
 namespace photon {
 
-// Runs `measure` once per CUDA launch shape (threads per photon block, pixel tile).
-// Each shape starts from the backend's own configuration (its gridBlocks follow the device's SMs).
+// Runs `measure` once per launch shape of the backend's device: on CUDA threads per photon block
+// and pixel tile, then the sppm gather's pool (pixel tiles a block, 0: none); on Vulkan the sppm
+// gather's pool. Each shape starts from the device's own configuration (CUDA's gridBlocks follow
+// the device's SMs), which is restored at the end.
 void sweepLaunchShapes(Renderer& backend, const std::function<void(const std::string&)>& measure);
 
 // Median host time of Renderer::image() (a synchronous copy of the accumulated image), through
