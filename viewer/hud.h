@@ -23,7 +23,7 @@ struct HudInfo {
     FrameRecord frame;              // the last completed frame's times
     FrameStats stats;               // its photon counts
     std::uint32_t accumulated = 0;  // frames in the image
-    float radius[2] = {};           // the query radii in use (global, caustic)
+    float radius[MAP_COUNT] = {};   // the query radii in use, by map
     bool windowed = true;
 };
 
