@@ -194,6 +194,9 @@ void benchFrameTimes(const BenchOptions& o, const CaseLists& lists, Clock::time_
             std::printf("  process start to backend creation: %.1f ms\n", msSince(processStart));
         }
         std::unique_ptr<Renderer> backend = createRenderer(backendName, o.options);
+        if (o.gatherPool) {
+            setGatherPool(*backend, *o.gatherPool);
+        }
         bool cpu = backendName == "cpu";
         for (const std::string& sceneName : splitList(o.scenes)) {
             Scene scene = sceneNamed(sceneName, o.scenesDir);

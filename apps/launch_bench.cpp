@@ -69,6 +69,17 @@ void sweepLaunchShapes([[maybe_unused]] Renderer& backend, [[maybe_unused]] cons
 #endif
 }
 
+void setGatherPool([[maybe_unused]] Renderer& backend, [[maybe_unused]] std::uint32_t tiles) {
+#ifdef PHOTON_HAVE_CUDA
+    LaunchConfig c = cudaLaunchConfig(backend.device());
+    c.gatherTiles = tiles;
+    setCudaLaunchConfig(backend.device(), c);
+#endif
+#ifdef PHOTON_HAVE_VULKAN
+    setVulkanGatherPoolTiles(backend.device(), tiles);
+#endif
+}
+
 void timeReadback(Renderer& backend) {
     for (bool pinned : {true, false}) {
         setPageableReadback(backend, !pinned);

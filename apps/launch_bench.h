@@ -18,6 +18,11 @@ namespace photon {
 // the device's SMs), which is restored at the end.
 void sweepLaunchShapes(Renderer& backend, const std::function<void(const std::string&)>& measure);
 
+// The sppm gather's pool of the backend's GPU device: pixel tiles a block or workgroup, 0 for
+// one thread a pixel, at most kMaxGatherPool (nothing on the CPU).
+constexpr std::uint32_t kMaxGatherPool = 64;
+void setGatherPool(Renderer& backend, std::uint32_t tiles);
+
 // Median host time of Renderer::image() (a synchronous copy of the accumulated image), through
 // pinned memory and straight into pageable memory.
 void timeReadback(Renderer& backend);
