@@ -172,35 +172,14 @@ TEST_F(CudaVsCpu, SameSeedSameImageWhenDeterministic) {
     EXPECT_EQ(test::differingPixels(first, second), 0u);
 }
 
-// The sppm gather's pool (cuda/stages.cu) changes which thread gathers a pixel, never what it finds
-// there: every pool gives the image of one thread a pixel bit for bit, over the first frame (sppm's
-// start) and the next, in the final, caustic and grid views, on an image that its tiles do not
-// divide (partial tiles, strips that wrap into the next row of tiles).
+// The sppm gather's pool (cuda/stages.cu) gives the image of one thread a pixel.
 TEST_F(CudaVsCpu, GatherPoolsGiveTheImageOfOneThreadAPixel) {
-    Scene scene = defaultScene();
     auto cuda = createRenderer("cuda");
-    for (View view : {View::Final, View::Caustic, View::Grid}) {
-        RenderSettings s = test::sizedSettings(small(), 53, 37, 50000);
-        s.estimator = Estimator::Sppm;
-        s.deterministic = true;
-        s.view = view;
-        Image frame;
-        Image image;
-        for (std::uint32_t tiles : {0u, 1u, 3u, 16u}) {
-            LaunchConfig c = cudaLaunchConfig(cuda->device());
-            c.gatherTiles = tiles;
-            setCudaLaunchConfig(cuda->device(), c);
-            test::StageOutputs out = test::renderStages(*cuda, scene, s);
-            if (tiles == 0) {
-                frame = out.frame;
-                image = out.image;
-                continue;
-            }
-            std::string what = std::string(toString(view)) + " view, pool of " + std::to_string(tiles) + " tiles";
-            EXPECT_EQ(test::differingPixels(frame, out.frame), 0u) << what;
-            EXPECT_EQ(test::differingPixels(image, out.image), 0u) << what;
-        }
-    }
+    test::expectGatherPoolsGiveOneImage(*cuda, defaultScene(), small(), [&](std::uint32_t tiles) {
+        LaunchConfig c = cudaLaunchConfig(cuda->device());
+        c.gatherTiles = tiles;
+        setCudaLaunchConfig(cuda->device(), c);
+    });
 }
 
 // A request larger than this device's memory (derived from the device, so that it fails on any
