@@ -9,7 +9,9 @@
 #include "stages.h"
 
 #include <algorithm>
+#include <mutex>
 #include <string>
+#include <vector>
 
 #include "core/system/error.h"
 #include "cuda_check.h"
@@ -230,6 +232,33 @@ dim3 pixelGrid(const Bindings& b, const LaunchConfig& c) {
     return dim3((b.params.width + c.pixelBlockX - 1) / c.pixelBlockX, (b.params.height + c.pixelBlockY - 1) / c.pixelBlockY);
 }
 
+// The blocks of tracePhotonsKernel a device holds at once, for a block size: asked of the
+// occupancy API once per device and size (a frame would otherwise ask it every time).
+uint residentPhotonBlocks(uint blockSize) {
+    struct Entry {
+        int device;
+        uint blockSize;
+        uint blocks;
+    };
+    static std::mutex mutex;
+    static std::vector<Entry> known;
+    int device = 0;
+    CUDA_CHECK(cudaGetDevice(&device), "tracePhotons");
+    std::lock_guard<std::mutex> lock(mutex);
+    for (const Entry& e : known) {
+        if (e.device == device && e.blockSize == blockSize) {
+            return e.blocks;
+        }
+    }
+    int processors = 0;
+    int resident = 0;
+    CUDA_CHECK(cudaDeviceGetAttribute(&processors, cudaDevAttrMultiProcessorCount, device), "tracePhotons");
+    CUDA_CHECK(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&resident, tracePhotonsKernel, int(blockSize), 0),
+               "tracePhotons");
+    known.push_back({device, blockSize, uint(std::max(processors * resident, 1))});
+    return known.back().blocks;
+}
+
 // Paths [0, pathCount), appending photons to the maps: as many blocks of the pool as the device
 // holds at once (more would only start once the paths are taken), fewer for fewer paths.
 void tracePhotons(const Bindings& b, const LaunchConfig& c, cudaStream_t s) {
@@ -237,14 +266,7 @@ void tracePhotons(const Bindings& b, const LaunchConfig& c, cudaStream_t s) {
     if (paths == 0) {
         return;
     }
-    int device = 0;
-    int processors = 0;
-    int resident = 0;
-    CUDA_CHECK(cudaGetDevice(&device), "tracePhotons");
-    CUDA_CHECK(cudaDeviceGetAttribute(&processors, cudaDevAttrMultiProcessorCount, device), "tracePhotons");
-    CUDA_CHECK(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&resident, tracePhotonsKernel, int(c.photonBlock), 0),
-               "tracePhotons");
-    uint blocks = std::min((paths + c.photonBlock - 1) / c.photonBlock, uint(std::max(processors * resident, 1)));
+    uint blocks = std::min((paths + c.photonBlock - 1) / c.photonBlock, residentPhotonBlocks(c.photonBlock));
     tracePhotonsKernel<<<blocks, c.photonBlock, 0, s>>>(b);
     CUDA_CHECK_LAUNCH("tracePhotons");
 }
