@@ -1,7 +1,8 @@
 // The CUDA kernels of one frame, behind a table of launch functions: one per stage of
 // shared/stages.h, found by its STAGE_* (the grid build's steps apart). stages.cu is compiled
-// as fast kernels (FMA contraction) and as parity kernels (--fmad=false: photon maps and hit points
-// that match the CPU backend bit for bit).
+// as fast kernels (FMA contraction and --use_fast_math: the arithmetic GLSL drivers use) and as
+// parity kernels (IEEE arithmetic and --fmad=false: photon maps and hit points that match the CPU
+// backend bit for bit).
 #pragma once
 
 #include <cuda_runtime.h>
