@@ -3,7 +3,6 @@
 #pragma once
 
 #include <cstdint>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,7 +25,6 @@ struct BenchOptions {
     std::uint32_t warmup = 3;
     std::uint32_t cpuFrames = 3;
     bool launchSweep = false;
-    std::optional<std::uint32_t> gatherPool;  // the GPU devices' sppm gather pool, if given
     bool readback = false;
     bool primaryRays = false;
     bool imageWriters = false;

@@ -5,7 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "apps/launch_bench.h"
+#include "apps/cuda_launch_bench.h"
 #include "apps/render_options.h"
 #include "core/render/scene_stats.h"
 #include "core/frame/buffers.h"
@@ -194,9 +194,6 @@ void benchFrameTimes(const BenchOptions& o, const CaseLists& lists, Clock::time_
             std::printf("  process start to backend creation: %.1f ms\n", msSince(processStart));
         }
         std::unique_ptr<Renderer> backend = createRenderer(backendName, o.options);
-        if (o.gatherPool) {
-            setGatherPool(*backend, *o.gatherPool);
-        }
         bool cpu = backendName == "cpu";
         for (const std::string& sceneName : splitList(o.scenes)) {
             Scene scene = sceneNamed(sceneName, o.scenesDir);
@@ -218,7 +215,7 @@ void benchFrameTimes(const BenchOptions& o, const CaseLists& lists, Clock::time_
                 rows.push_back(r);
             };
             for (const Case& c : casesFor(scene, lists)) {
-                if (c.launchSweep && (backendName == "cuda" || backendName == "vulkan")) {
+                if (c.launchSweep && backendName == "cuda") {
                     sweepLaunchShapes(*backend, [&](const std::string& shape) { add(c.settings, shape); });
                 } else {
                     add(c.settings, c.variant);

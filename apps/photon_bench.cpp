@@ -22,7 +22,6 @@
 #include "apps/bvh_build_bench.h"
 #include "apps/frame_time_bench.h"
 #include "apps/image_writer_bench.h"
-#include "apps/launch_bench.h"
 #include "apps/photon_use_bench.h"
 #include "apps/render_options.h"
 #include "core/settings/setting_specs.h"
@@ -48,9 +47,7 @@ void addOptions(CLI::App& app, BenchOptions& o) {
     app.add_option("--vary", o.vary, "KEY=V1,V2,...: also measure each value of a scene-file render setting "
                                    "(cell_size, gather_budget, radius, caustic_radius, caustic_fraction, estimator, ...)");
     app.add_option("--grid-sweep", o.gridSweep, "Comma-separated photon counts: grid build rate at 320x240");
-    addSwitch(app, "--launch-sweep", o.launchSweep, "GPU backends: sweep launch shapes (CUDA: blocks of every stage; both: the sppm gather's pool)");
-    app.add_option("--gather-pool", o.gatherPool, "GPU backends: pixel tiles a block of the sppm gather's pool (0: none; default: the device's)")
-        ->check(CLI::Range(0u, kMaxGatherPool));
+    addSwitch(app, "--launch-sweep", o.launchSweep, "CUDA: sweep block shapes of every stage");
     addSwitch(app, "--primary-rays", o.primaryRays, "CUDA: also time primary rays alone (nearest hit, no shading) per case");
     app.add_option("--bvh-builds", o.bvhBuilds, "Time only the BVH build of each scene, this many times (no frames)")
         ->check(CLI::Range(1u, 10000u));

@@ -138,75 +138,6 @@ __global__ void __launch_bounds__(kGatherThreads, gatherMinBlocks(GlobalMode)) g
     }
 }
 
-// The sppm gather as a pool (shared/sppm.h, SppmGather): a block gathers `tiles` tiles of the image
-// (a strip of them, in row-major order), its threads taking the strip's pixels one at a time from
-// a counter in shared memory as their last one ends. A thread whose pixels find few photons then
-// goes on to the next instead of idling until its warp's slowest is done; only the strip's last
-// pixels leave threads idle. A warp steps its threads' queries until half of them have ended one,
-// and only then do those threads end their map or pixel and start the next, together: a query's
-// step is a photon test of a few instructions, its ends and starts hundreds, which would otherwise
-// run for one thread at a time (Aila & Laine 2009's persistent threads fetch new rays so).
-template <bool SppmStart>
-__global__ void __launch_bounds__(kGatherThreads, gatherMinBlocks(GLOBAL_DIRECT))
-    gatherSppmPoolKernel(const __grid_constant__ Bindings b, uint tiles) {
-    __shared__ uint taken;
-    if (threadIdx.x == 0 && threadIdx.y == 0) {
-        taken = 0u;
-    }
-    __syncthreads();
-    const uint tilePixels = blockDim.x * blockDim.y;
-    const uint tilesX = (b.params.width + blockDim.x - 1u) / blockDim.x;
-    const uint tileCount = tilesX * ((b.params.height + blockDim.y - 1u) / blockDim.y);
-    const uint first = blockIdx.x * tiles;
-    SppmGather g;
-    bool busy = false;
-    for (;;) {
-        if (!busy) {
-            uint w = atomicAdd(&taken, 1u);
-            if (w >= tiles * tilePixels) {
-                return;
-            }
-            uint t = first + w / tilePixels;
-            uint k = w % tilePixels;
-            uint x = (t % tilesX) * blockDim.x + k % blockDim.x;
-            uint y = (t / tilesX) * blockDim.y + k / blockDim.x;
-            if (t >= tileCount || x >= b.params.width || y >= b.params.height) {
-                continue;
-            }
-            uint pixel = y * b.params.width + x;
-            if (b.params.view == VIEW_GRID) {
-                b.frameRadiance[pixel] = gatherStage(b, pixel, ESTIMATOR_SPPM, GLOBAL_DIRECT, SppmStart);
-                continue;
-            }
-            g = sppmGatherBegin(b, pixel, SppmStart);
-            busy = true;
-        }
-        if (g.map < SURFACE_MAP_COUNT) {
-            const GridParams& grid = b.params.grids[g.map];
-            RadiusQuery query = g.query;
-            bool ended = false;
-            for (;;) {
-                if (!ended) {
-                    ended = !radiusQueryStep(b, query, grid, g.s, g.x, g.radius, KERNEL_BOX, g.u, true);
-                }
-                uint warp = __activemask();
-                if (2 * __popc(__ballot_sync(warp, ended)) >= __popc(warp)) {
-                    break;
-                }
-            }
-            g.query = query;
-            if (!ended) {
-                continue;
-            }
-            sppmEndMap(b, g, SppmStart);
-        }
-        if (g.map >= SURFACE_MAP_COUNT) {
-            b.frameRadiance[g.pixel] = sppmGatherResult(b, g);
-            busy = false;
-        }
-    }
-}
-
 __global__ void accumulateKernel(const __grid_constant__ Bindings b) {
     uint p;
     if (pixelOf(b, p)) {
@@ -307,15 +238,7 @@ void gatherWith(const Bindings& b, const LaunchConfig& c, cudaStream_t s) {
         if (b.params.globalMode != GLOBAL_DIRECT) {
             throw std::logic_error("CUDA gather: sppm in global mode " + std::to_string(b.params.globalMode));
         }
-        const bool start = sppmStarts(Estimator, b.params.view, b.params.accumulated);
-        if (c.gatherTiles > 0) {
-            uint blocks = (grid.x * grid.y + c.gatherTiles - 1) / c.gatherTiles;
-            if (start) {
-                gatherSppmPoolKernel<true><<<blocks, block, 0, s>>>(b, c.gatherTiles);
-            } else {
-                gatherSppmPoolKernel<false><<<blocks, block, 0, s>>>(b, c.gatherTiles);
-            }
-        } else if (start) {
+        if (sppmStarts(Estimator, b.params.view, b.params.accumulated)) {
             gatherKernel<Estimator, GLOBAL_DIRECT, true><<<grid, block, 0, s>>>(b);
         } else {
             gatherKernel<Estimator, GLOBAL_DIRECT, false><<<grid, block, 0, s>>>(b);

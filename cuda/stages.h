@@ -21,7 +21,6 @@ struct LaunchConfig {
     std::uint32_t photonBlock = 256;  // threads per block of the photon pass
     std::uint32_t pixelBlockX = 8;    // pixel tile of the eye pass and the gather
     std::uint32_t pixelBlockY = 8;
-    std::uint32_t gatherTiles = 0;    // pixel tiles per block of the sppm gather's pool (0: a thread a pixel)
     std::uint32_t gridBlocks = 1056;  // blocks of the grid-stride loops over stored photons
     bool pinnedReadback = true;       // images come back through pinned memory (else pageable)
 };

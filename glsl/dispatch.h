@@ -22,9 +22,6 @@ PH_CONST uint MAX_GROUPS_X = 65535u;  // the smallest maxComputeWorkGroupCount[0
 // since Vulkan does not say how many that is; groups beyond them start once the paths are taken,
 // and end at once.
 PH_CONST uint PHOTON_POOL = 1u << 19;
-// Pixel tiles per workgroup of the sppm gather's pool on GPUs (glsl/gather.comp), a strip of them;
-// 0: no pool, one invocation a pixel (the default until a GPU has measured the pool faster).
-PH_CONST uint GATHER_POOL_TILES = 0u;
 PH_CONST uint SCAN_ITEMS = 4u;        // cells each invocation of the scan sums in sequence
 
 // The counters buffer: the COUNTER_* slots, then the indirect-dispatch arguments (x, y, z

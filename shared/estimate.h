@@ -198,69 +198,48 @@ PH_FN void addRadiusContribution(BUF_PARAM PH_INOUT(vec4) sum, PH_IN(Shading) s,
     }
 }
 
-// A query of the photons within the disc of radius r at s, in progress: Σ f·Φp·K (xyz, before
-// estimateScale and the normalisation by the disc's area) and, if `count`, how many there are
-// (w; else 0), both weighted for subsampling. (Callers pass a constant `count`: the estimates that
-// need no count keep its registers.)
-// It advances one step at a time, each step either testing a photon or moving to the next cell:
-// a flat loop over (cell, photon) pairs, in which the threads of a SIMD group drift through their
-// cells independently instead of waiting for each other at every cell boundary (the "if-if" loop
-// of Aila & Laine, "Understanding the Efficiency of Ray Traversal on GPUs", HPG 2009), and which a
-// caller can interleave with other work (sppm.h runs both maps' queries in one loop).
-struct RadiusQuery {
-    CellQuery cells;
-    uint i;        // the next photon of the visited cell
-    uint end;      // one past its last
-    uint stride;   // its subsampling stride
-    vec4 cellSum;  // its photons' share so far
-    vec4 sum;      // the cells already visited, weighted by their strides
-};
-
-PH_FN RadiusQuery beginRadiusQuery(PH_IN(GridParams) grid, PH_IN(Shading) s, float radius) {
-    RadiusQuery rq;
-    rq.cells = beginCellQuery(s.position, discExtent(s.geometricNormal, radius, DISC_THICKNESS * radius), radius, grid);
-    rq.i = 0u;
-    rq.end = 0u;
-    rq.stride = 1u;
-    rq.cellSum = vec4(0.0f);
-    rq.sum = vec4(0.0f);
-    return rq;
-}
-
-// One step of the query; false once every cell has been visited (rq.sum is then the result).
-// `x`: s.position relative to the grid's origin, as the maps keep positions.
-PH_FN bool radiusQueryStep(BUF_PARAM PH_INOUT(RadiusQuery) rq, PH_IN(GridParams) grid, PH_IN(Shading) s, vec3 x,
-                           float radius, uint kernel, float u, bool count) {
-    if (rq.i >= rq.end) {
-        rq.sum += rq.cellSum * float(rq.stride);
-        rq.cellSum = vec4(0.0f);
-        uint key;
-        if (!nextCell(rq.cells, grid, key)) {
-            return false;
-        }
-        uint begin;
-        cellRange(BUF_ARG grid, key, begin, rq.end);
-        rq.stride = subsampleStride(rq.end - begin, BUF(params).gatherBudget);
-        rq.i = subsampleStart(begin, rq.stride, u);
-        return true;
-    }
-    MapPhoton p = loadMapPhoton(BUF_ARG rq.i);
-    if (inVisitedCell(rq.cells, grid, p)) {
-        float r2 = radius * radius;
-        addRadiusContribution(BUF_ARG rq.cellSum, s, x, p, r2, 1.0f / r2, DISC_THICKNESS * radius, kernel, count);
-    }
-    rq.i += rq.stride;
-    return true;
-}
-
-// The whole query at once.
+// The photons within the disc of radius r at s: Σ f·Φp·K (xyz, before estimateScale and the
+// normalisation by the disc's area) and, if `count`, how many there are (w; else 0), both weighted
+// for subsampling. (Callers pass a constant `count`: the estimates that need no count keep its
+// registers.)
+// One flat loop over (cell, photon) pairs, in which each iteration either tests a photon or moves
+// to the next cell: on SIMD hardware the threads of a warp then drift through their cells
+// independently instead of waiting for each other at every cell boundary (the "if-if" loop of
+// Aila & Laine, "Understanding the Efficiency of Ray Traversal on GPUs", HPG 2009).
 PH_FN vec4 radiusQuery(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float radius, uint kernel, float u,
                        bool count) {
-    RadiusQuery rq = beginRadiusQuery(grid, s, radius);
+    float r2 = radius * radius;
+    float invR2 = 1.0f / r2;
+    float thickness = DISC_THICKNESS * radius;
+    uint budget = BUF(params).gatherBudget;
     vec3 x = s.position - grid.origin;
-    while (radiusQueryStep(BUF_ARG rq, grid, s, x, radius, kernel, u, count)) {
+    vec4 sum = vec4(0.0f);
+    vec4 cellSum = vec4(0.0f);
+    CellQuery q = beginCellQuery(s.position, discExtent(s.geometricNormal, radius, thickness), radius, grid);
+    uint i = 0u;
+    uint end = 0u;
+    uint stride = 1u;
+    while (true) {
+        if (i >= end) {
+            sum += cellSum * float(stride);
+            cellSum = vec4(0.0f);
+            uint key;
+            if (!nextCell(q, grid, key)) {
+                break;
+            }
+            uint begin;
+            cellRange(BUF_ARG grid, key, begin, end);
+            stride = subsampleStride(end - begin, budget);
+            i = subsampleStart(begin, stride, u);
+            continue;
+        }
+        MapPhoton p = loadMapPhoton(BUF_ARG i);
+        if (inVisitedCell(q, grid, p)) {
+            addRadiusContribution(BUF_ARG cellSum, s, x, p, r2, invR2, thickness, kernel, count);
+        }
+        i += stride;
     }
-    return rq.sum;
+    return sum;
 }
 
 // The radius estimate: the query over the disc's area, for the kernel.

@@ -90,50 +90,35 @@ struct SppmEstimate {
     float count;
 };
 
-// The pixel's statistics of `map` as the frame found them (zero in its first frame).
-PH_FN SppmEstimate loadSppmEstimate(BUF_PARAM uint pixel, uint map) {
-    SppmEstimate e;
-    e.flux = vec3(0.0f);
-    e.radius = 0.0f;
-    e.count = 0.0f;
-    if (historyFrames(BUF_ARG pixel) > 0u) {
-        e.flux = BUF(sppmPixels)[pixel].maps[map].flux;
-        e.radius = BUF(sppmPixels)[pixel].maps[map].radius;
-        e.count = BUF(sppmPixels)[pixel].count[map];
+// This frame's photons of `map` at the visible point, folded into its statistics. Returns the
+// frame's own estimate Φ / (πR²) (for the single-frame image).
+PH_FN vec3 sppmUpdate(BUF_PARAM uint map, PH_IN(Shading) s, vec3 weight, float footprint, float u, bool start,
+                      PH_INOUT(SppmEstimate) e) {
+    GridParams grid = BUF(params).grids[map];
+    if (grid.photonCapacity == 0u) {
+        return vec3(0.0f);
     }
-    return e;
-}
-
-// The radius of this frame's query of `map` (which has photons) at the visible point: the stored
-// one, or the first (sppmFirstRadius where the frame starts sppm, else firstFootprints footprints),
-// and no wider than the radius the cells follow while the pixel has found no photon: where a map has
-// no light (most pixels, for the caustic map) queries stay as cheap as the lit pixels' ones.
-PH_FN float sppmQueryRadius(BUF_PARAM uint map, PH_IN(Shading) s, PH_IN(SppmEstimate) e, float footprint, bool start) {
-    float radius = e.radius;
-    if (radius == 0.0f) {
+    if (e.radius == 0.0f) {
         float first = BUF(params).sppm[map].firstRadius;
         if (first > 0.0f) {
-            radius = first;
+            e.radius = first;
         } else if (start) {
-            radius = sppmFirstRadius(BUF_ARG map, s, footprint);
+            e.radius = sppmFirstRadius(BUF_ARG map, s, footprint);
         } else {
-            radius = footprint * BUF(params).sppm[map].firstFootprints;
+            e.radius = footprint * BUF(params).sppm[map].firstFootprints;
         }
     }
     if (e.count == 0.0f) {
-        radius = min(radius, BUF(params).grids[map].radius);
+        // A pixel that has found no photon yet (its τ is 0) is held to the radius the cells follow:
+        // where a map has no light (most pixels, for the caustic map) queries stay as cheap as
+        // the lit pixels' ones.
+        e.radius = min(e.radius, grid.radius);
     }
-    return radius;
-}
-
-// This frame's photons of `map` within radius r (q: their reflected flux, xyz, and number, w)
-// folded into the statistics `e`. Returns the frame's own estimate Φ / (πR²) (for the
-// single-frame image).
-PH_FN vec3 sppmFold(BUF_PARAM uint map, PH_IN(Shading) s, vec3 weight, float r, vec4 q, PH_INOUT(SppmEstimate) e) {
+    float r = e.radius;
+    vec4 q = radiusQuery(BUF_ARG grid, s, r, KERNEL_BOX, u, true);
     vec3 phi = rgbFromSpectral(BUF_ARG weight * vec3(q) * estimateScale(s));  // frames average in RGB
     float m = q.w;
     vec3 frame = phi * (INV_PI / (r * r));
-    e.radius = r;
     if (m > 0.0f) {
         uint batches = max(BUF(params).sppm[map].batches, 1u);
         float alpha = BUF(params).alpha;
@@ -163,66 +148,34 @@ PH_FN vec3 sppmFold(BUF_PARAM uint map, PH_IN(Shading) s, vec3 weight, float r, 
     return frame;
 }
 
-// The sppm gather of one pixel in parts that a GPU may interleave with other pixels' (a pool,
-// whose threads take their next pixel when one ends: cuda/stages.cu, glsl/gather.comp):
-// sppmGatherBegin; for each map, its query's steps (radiusQueryStep on `query` until it returns
-// false), then sppmEndMap, which starts the next; sppmGatherResult once `map` is
-// SURFACE_MAP_COUNT. gatherSppm runs them in order.
-struct SppmGather {
-    uint pixel;
-    uint map;           // the map whose query runs; SURFACE_MAP_COUNT once the pixel is done
-    Shading s;
-    float u;            // places the subsampling of dense cells
-    float radius;       // of the running query
-    vec3 x;             // the visible point relative to the map's grid
-    RadiusQuery query;
-    vec3 shown;         // the finished maps' estimates that the view shows
-    float caustic;      // the luminance of the caustic map's among them
-};
-
-// Starts the query of the first map from g.map on that has photons (a map without them adds
-// nothing and keeps its statistics), or leaves g.map at SURFACE_MAP_COUNT.
-PH_FN void sppmBeginMap(BUF_PARAM PH_INOUT(SppmGather) g, bool start) {
-    for (; g.map < SURFACE_MAP_COUNT; ++g.map) {
-        GridParams grid = BUF(params).grids[g.map];
-        if (grid.photonCapacity == 0u) {
-            continue;
-        }
-        float footprint = pixelFootprint(BUF(params).camera, BUF(params).height, g.s.position);
-        g.radius = sppmQueryRadius(BUF_ARG g.map, g.s, loadSppmEstimate(BUF_ARG g.pixel, g.map), footprint, start);
-        g.x = g.s.position - grid.origin;
-        g.query = beginRadiusQuery(grid, g.s, g.radius);
-        return;
+// One map's pass of the sppm gather at a pixel's visible point: its statistics read, updated
+// with this frame's photons and written back. Each map's pass reads what it needs itself, so that
+// nothing of the other map's pass is kept in registers across its loop over photons.
+PH_FN vec3 gatherSppmMap(BUF_PARAM uint pixel, uint map, float u, bool start) {
+    HitPoint hp = BUF(hitPoints)[pixel];
+    Shading s = hitPointShading(BUF_ARG hp);
+    SppmEstimate e;
+    e.flux = vec3(0.0f);
+    e.radius = 0.0f;
+    e.count = 0.0f;
+    if (historyFrames(BUF_ARG pixel) > 0u) {
+        e.flux = BUF(sppmPixels)[pixel].maps[map].flux;
+        e.radius = BUF(sppmPixels)[pixel].maps[map].radius;
+        e.count = BUF(sppmPixels)[pixel].count[map];
     }
+    float footprint = pixelFootprint(BUF(params).camera, BUF(params).height, hp.position);
+    vec3 estimate = sppmUpdate(BUF_ARG map, s, hp.weight, footprint, u, start, e);
+    BUF(sppmPixels)[pixel].maps[map].flux = e.flux;
+    BUF(sppmPixels)[pixel].maps[map].radius = e.radius;
+    BUF(sppmPixels)[pixel].count[map] = e.count;
+    return estimate;
 }
 
-// The running map's statistics updated with what its query found (read again: nothing of them is
-// kept in registers across the query), then the next map started.
-PH_FN void sppmEndMap(BUF_PARAM PH_INOUT(SppmGather) g, bool start) {
-    uint map = g.map;
-    SppmEstimate e = loadSppmEstimate(BUF_ARG g.pixel, map);
-    vec3 estimate = sppmFold(BUF_ARG map, g.s, BUF(hitPoints)[g.pixel].weight, g.radius, g.query.sum, e);
-    BUF(sppmPixels)[g.pixel].maps[map].flux = e.flux;
-    BUF(sppmPixels)[g.pixel].maps[map].radius = e.radius;
-    BUF(sppmPixels)[g.pixel].count[map] = e.count;
+// The gather stage under sppm: updates the pixel's statistics and returns this frame's own
+// estimate (frameRadiance; STAGE_ACCUMULATE makes the image from the statistics), and in w the
+// luminance of its caustic map's part, which the denoiser leaves as it is (denoise.h).
+PH_FN vec4 gatherSppm(BUF_PARAM uint pixel, bool start) {
     uint view = BUF(params).view;
-    g.shown += viewShowsMap(view, map) ? estimate : vec3(0.0f);
-    g.caustic += map == MAP_CAUSTIC && viewShowsMap(view, map) ? luminanceOf(estimate) : 0.0f;
-    g.map = map + 1u;
-    sppmBeginMap(BUF_ARG g, start);
-}
-
-// Starts the pixel: the mean of its direct light updated (its statistics emptied in its first
-// frame), then the first map's query where its visible point is on a surface.
-PH_FN SppmGather sppmGatherBegin(BUF_PARAM uint pixel, bool start) {
-    SppmGather g;
-    g.pixel = pixel;
-    g.map = SURFACE_MAP_COUNT;
-    g.u = 0.0f;
-    g.radius = 0.0f;
-    g.x = vec3(0.0f);
-    g.shown = vec3(0.0f);
-    g.caustic = 0.0f;
     uint frames = historyFrames(BUF_ARG pixel);
     vec3 direct = rgbFromSpectral(BUF_ARG BUF(hitPoints)[pixel].direct);
     if (frames == 0u) {
@@ -230,42 +183,20 @@ PH_FN SppmGather sppmGatherBegin(BUF_PARAM uint pixel, bool start) {
     }
     vec3 mean = BUF(sppmPixels)[pixel].direct;
     BUF(sppmPixels)[pixel].direct = mean + (direct - mean) / float(frames + 1u);
-    HitPoint hp = BUF(hitPoints)[pixel];
-    if (hp.material != NONE) {
-        g.s = hitPointShading(BUF_ARG hp);
+    vec3 frame = viewShowsDirect(view) ? direct : vec3(0.0f);
+    float caustic = 0.0f;
+    if (BUF(hitPoints)[pixel].material != NONE) {
         Rng rng = rngCreate(pixel, BUF(params).frameIndex, BUF(params).seed, STREAM_GATHER);
-        g.u = rngNext(rng);
-        g.map = 0u;
-        sppmBeginMap(BUF_ARG g, start);
-    }
-    return g;
-}
-
-// The frame's radiance at the finished pixel (frameRadiance; STAGE_ACCUMULATE makes the image from
-// the statistics), and in w the luminance of its caustic map's part, which the denoiser leaves as
-// it is (denoise.h).
-PH_FN vec4 sppmGatherResult(BUF_PARAM PH_IN(SppmGather) g) {
-    vec3 frame = viewShowsDirect(BUF(params).view) ? rgbFromSpectral(BUF_ARG BUF(hitPoints)[g.pixel].direct) : vec3(0.0f);
-    if (BUF(hitPoints)[g.pixel].material != NONE) {
-        frame += g.shown;
-    }
-    return vec4(frame, g.caustic);
-}
-
-// The gather stage under sppm at one pixel, a map at a time: each map's query runs in a loop of
-// its own over a local copy, whose state then stays in registers (stepping the whole SppmGather
-// made the CPU's gather 26% slower and lavapipe's 35%).
-PH_FN vec4 gatherSppm(BUF_PARAM uint pixel, bool start) {
-    SppmGather g = sppmGatherBegin(BUF_ARG pixel, start);
-    while (g.map < SURFACE_MAP_COUNT) {
-        GridParams grid = BUF(params).grids[g.map];
-        RadiusQuery query = g.query;
-        while (radiusQueryStep(BUF_ARG query, grid, g.s, g.x, g.radius, KERNEL_BOX, g.u, true)) {
+        float u = rngNext(rng);
+        vec3 shown = vec3(0.0f);
+        for (uint m = 0u; m < SURFACE_MAP_COUNT; ++m) {
+            vec3 estimate = gatherSppmMap(BUF_ARG pixel, m, u, start);
+            shown += viewShowsMap(view, m) ? estimate : vec3(0.0f);
+            caustic += m == MAP_CAUSTIC && viewShowsMap(view, m) ? luminanceOf(estimate) : 0.0f;
         }
-        g.query = query;
-        sppmEndMap(BUF_ARG g, start);
+        frame += shown;
     }
-    return sppmGatherResult(BUF_ARG g);
+    return vec4(frame, caustic);
 }
 
 // The pixel's image after `frames` frames.

@@ -190,33 +190,4 @@ inline void forSpectralCases(const Scene& scene, const RenderSettings& base,
     }
 }
 
-// The sppm gather's pool changes which thread gathers a pixel, never what it finds there. In the
-// final, caustic and grid views, renders two frames of `scene` (sppm's start and the next,
-// deterministic maps, at 53 × 37: partial tiles, strips that wrap into the next row of tiles) with
-// pools of 0, 1, 3 and 16 tiles (`setPool` sets one on the backend's device) and expects every
-// pool's frame and image to be those of no pool, bit for bit.
-inline void expectGatherPoolsGiveOneImage(Renderer& backend, const Scene& scene, const RenderSettings& base,
-                                          const std::function<void(std::uint32_t)>& setPool) {
-    for (View view : {View::Final, View::Caustic, View::Grid}) {
-        RenderSettings settings = sizedSettings(base, 53, 37, base.photons);
-        settings.estimator = Estimator::Sppm;
-        settings.deterministic = true;
-        settings.view = view;
-        Image frame;
-        Image image;
-        for (std::uint32_t tiles : {0u, 1u, 3u, 16u}) {
-            setPool(tiles);
-            renderFrames(backend, scene, settings, 2);
-            if (tiles == 0) {
-                frame = backend.readFrame();
-                image = backend.image();
-                continue;
-            }
-            std::string what = std::string(toString(view)) + " view, pool of " + std::to_string(tiles) + " tiles";
-            EXPECT_EQ(differingPixels(frame, backend.readFrame()), 0u) << what;
-            EXPECT_EQ(differingPixels(image, backend.image()), 0u) << what;
-        }
-    }
-}
-
 }  // namespace photon::test

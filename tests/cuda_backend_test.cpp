@@ -172,16 +172,6 @@ TEST_F(CudaVsCpu, SameSeedSameImageWhenDeterministic) {
     EXPECT_EQ(test::differingPixels(first, second), 0u);
 }
 
-// The sppm gather's pool (cuda/stages.cu) gives the image of one thread a pixel.
-TEST_F(CudaVsCpu, GatherPoolsGiveTheImageOfOneThreadAPixel) {
-    auto cuda = createRenderer("cuda");
-    test::expectGatherPoolsGiveOneImage(*cuda, defaultScene(), small(), [&](std::uint32_t tiles) {
-        LaunchConfig c = cudaLaunchConfig(cuda->device());
-        c.gatherTiles = tiles;
-        setCudaLaunchConfig(cuda->device(), c);
-    });
-}
-
 // A request larger than this device's memory (derived from the device, so that it fails on any
 // GPU) is refused before any work; the backend renders a small one afterwards.
 TEST_F(CudaVsCpu, TooLargeRequestsAreRefusedBeforeWork) {

@@ -508,15 +508,6 @@ TEST_F(VulkanBackendTest, DeterministicMapsEqualTheCpuInOrder) {
     }
 }
 
-// The sppm gather's pool (glsl/gather.comp) gives the image of one invocation a pixel.
-TEST_F(VulkanBackendTest, GatherPoolsGiveTheImageOfOneInvocationAPixel) {
-    Device& device = vulkan_->device();
-    const std::uint32_t own = vulkanGatherPoolTiles(device);
-    test::expectGatherPoolsGiveOneImage(*vulkan_, featureScene(), smallSettings(),
-                                        [&](std::uint32_t tiles) { setVulkanGatherPoolTiles(device, tiles); });
-    setVulkanGatherPoolTiles(device, own);
-}
-
 // Two Vulkan devices split a frame's photon paths and the second sends its photons to the first
 // (core/frame/collective.h): the image is one device's bit for bit. On one GPU (or lavapipe) the
 // two devices are two contexts on it; the exchange goes through writeBuffer's upload at an offset.

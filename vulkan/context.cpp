@@ -71,9 +71,8 @@ std::string checkDevice(DeviceCandidate& c, VkSurfaceKHR surface, const std::vec
     VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &subgroup};
     vkGetPhysicalDeviceProperties2(c.physicalDevice, &properties);
     if (!(subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) ||
-        !(subgroup.supportedOperations & VK_SUBGROUP_FEATURE_ARITHMETIC_BIT) ||
-        !(subgroup.supportedOperations & VK_SUBGROUP_FEATURE_BALLOT_BIT)) {
-        return "no subgroup arithmetic or ballot in compute shaders";
+        !(subgroup.supportedOperations & VK_SUBGROUP_FEATURE_ARITHMETIC_BIT)) {
+        return "no subgroup arithmetic in compute shaders";
     }
     // Every stage binds the whole buffer list of shared/bindings.h in one set.
     const VkPhysicalDeviceLimits& limits = c.properties.limits;

@@ -3,8 +3,6 @@
 #include "device.h"
 
 #include <algorithm>
-#include <stdexcept>
-#include <string>
 
 #include "check.h"
 #include "core/system/error.h"
@@ -14,8 +12,7 @@
 namespace photon::vk {
 
 VulkanDevice::VulkanDevice(std::shared_ptr<Context> context)
-    : context_(std::move(context)), transfers_(*context_), pipelines_(*context_),
-      gatherPoolTiles_(runsOnCpu() ? 0u : GATHER_POOL_TILES) {
+    : context_(std::move(context)), transfers_(*context_), pipelines_(*context_) {
     VkDevice device = context_->device;
     CommandBuffer commands = createCommandBuffer(device, context_->queueFamily);
     frame_.pool = commands.pool;
@@ -28,14 +25,6 @@ VulkanDevice::VulkanDevice(std::shared_ptr<Context> context)
     frame_.counters = Buffer(*context_, COUNTER_COUNT * sizeof(std::uint32_t), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                              MemoryUse::Readback);
     context_->checkValidation("creating the Vulkan backend");
-}
-
-void VulkanDevice::setGatherPoolTiles(std::uint32_t tiles) {
-    if (tiles > Pipelines::kMaxGatherPoolTiles) {
-        throw std::invalid_argument("Vulkan: the sppm gather's pool takes at most " +
-                                    std::to_string(Pipelines::kMaxGatherPoolTiles) + " tiles a workgroup");
-    }
-    gatherPoolTiles_ = tiles;
 }
 
 VulkanDevice::~VulkanDevice() {

@@ -54,11 +54,6 @@ public:
     // Both change when prepare() reallocates: look them up after it, for each frame.
     VkBuffer buffer(std::uint32_t binding) const { return buffers_[binding].handle(); }
     const Pipelines& pipelines() const { return pipelines_; }
-    // The sppm gather's pool: pixel tiles a workgroup (glsl/gather.comp), 0 for one invocation a
-    // pixel. GATHER_POOL_TILES on GPUs; none on CPU implementations, where the pool's loop took
-    // twice as long (lavapipe, Cornell 320 × 240: 42 against 84–107 ms). photon-bench sweeps it.
-    std::uint32_t gatherPoolTiles() const { return gatherPoolTiles_; }
-    void setGatherPoolTiles(std::uint32_t tiles);
     const Context& context() const { return *context_; }
 
     void adjustPlan(BufferPlan& plan, const PhotonBudget& budget) override;
@@ -91,7 +86,6 @@ private:
     std::shared_ptr<Context> context_;  // shared with a viewer, if any; outlives everything below
     Transfers transfers_;               // uploads and readbacks, waited for
     Pipelines pipelines_;               // every shader, one descriptor set
-    std::uint32_t gatherPoolTiles_;
 
     // Buffers by binding number (shared/bindings.h), device-local.
     Buffer buffers_[BINDING_COUNT];

@@ -227,28 +227,24 @@ VkPipeline Pipelines::create(Shader shader, const VkSpecializationInfo* speciali
     return createComputePipeline(context_, layout, code.words, code.bytes, name, specialization, flags);
 }
 
-VkPipeline Pipelines::gather(std::uint32_t estimator, std::uint32_t globalMode, bool sppmStart, std::uint32_t poolTiles) {
-    if (estimator >= ESTIMATOR_COUNT || globalMode >= GLOBAL_MODE_COUNT || poolTiles > kMaxGatherPoolTiles ||
-        (poolTiles > 0 && estimator != ESTIMATOR_SPPM)) {
-        throw std::logic_error("Vulkan gather: unknown estimator " + std::to_string(estimator) + ", global mode " +
-                               std::to_string(globalMode) + " or pool of " + std::to_string(poolTiles) + " tiles");
+VkPipeline Pipelines::gather(std::uint32_t estimator, std::uint32_t globalMode, bool sppmStart) {
+    if (estimator >= ESTIMATOR_COUNT || globalMode >= GLOBAL_MODE_COUNT) {
+        throw std::logic_error("Vulkan gather: unknown estimator " + std::to_string(estimator) + " or global mode " +
+                               std::to_string(globalMode));
     }
-    std::uint32_t variant = ((estimator * GLOBAL_MODE_COUNT + globalMode) * 2u + (sppmStart ? 1u : 0u)) *
-                            (kMaxGatherPoolTiles + 1u) + poolTiles;
-    VkPipeline& p = gatherVariants_[variant];
-    if (p == VK_NULL_HANDLE) {
+    std::uint32_t variant = (estimator * GLOBAL_MODE_COUNT + globalMode) * 2u + (sppmStart ? 1u : 0u);
+    if (gatherVariants_[variant] == VK_NULL_HANDLE) {
         // A specialization constant of type bool is a VkBool32.
-        std::uint32_t constants[4] = {estimator, globalMode, sppmStart ? VK_TRUE : VK_FALSE, poolTiles};
-        VkSpecializationMapEntry entries[4] = {{1, 0, sizeof(std::uint32_t)},
+        std::uint32_t constants[3] = {estimator, globalMode, sppmStart ? VK_TRUE : VK_FALSE};
+        VkSpecializationMapEntry entries[3] = {{1, 0, sizeof(std::uint32_t)},
                                                {2, sizeof(std::uint32_t), sizeof(std::uint32_t)},
-                                               {3, 2 * sizeof(std::uint32_t), sizeof(VkBool32)},
-                                               {4, 3 * sizeof(std::uint32_t), sizeof(std::uint32_t)}};
-        VkSpecializationInfo specialization{4, entries, sizeof(constants), constants};
+                                               {3, 2 * sizeof(std::uint32_t), sizeof(VkBool32)}};
+        VkSpecializationInfo specialization{3, entries, sizeof(constants), constants};
         std::string name = std::string("gather<") + std::to_string(estimator) + "," + std::to_string(globalMode) + "," +
-                           (sppmStart ? "start" : "steady") + "," + std::to_string(poolTiles) + ">";
-        p = create(kGather, &specialization, 0, name.c_str());
+                           (sppmStart ? "start" : "steady") + ">";
+        gatherVariants_[variant] = create(kGather, &specialization, 0, name.c_str());
     }
-    return p;
+    return gatherVariants_[variant];
 }
 
 VkPipeline Pipelines::tracing(Shader shader, bool hasMedia) {
@@ -276,7 +272,7 @@ Pipelines::~Pipelines() {
     for (VkPipeline p : withoutMedia_) {
         vkDestroyPipeline(device, p, nullptr);
     }
-    for (auto [variant, p] : gatherVariants_) {
+    for (VkPipeline p : gatherVariants_) {
         vkDestroyPipeline(device, p, nullptr);
     }
     vkDestroyDescriptorPool(device, descriptorPool, nullptr);

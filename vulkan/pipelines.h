@@ -4,7 +4,6 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <map>
 
 #include <vulkan/vulkan.h>
 
@@ -59,11 +58,9 @@ public:
     // Points binding `binding` of the descriptor set at a whole buffer. Only between frames.
     void writeDescriptor(std::uint32_t binding, VkBuffer buffer, VkDeviceSize size);
 
-    // The gather pipeline specialized for an ESTIMATOR_*, a GLOBAL_* mode, whether the frame
-    // starts sppm (sppmStarts) and the sppm gather's pool (pixel tiles a workgroup, up to
-    // kMaxGatherPoolTiles; 0 for one invocation a pixel, as every other estimator), built on first use.
-    VkPipeline gather(std::uint32_t estimator, std::uint32_t globalMode, bool sppmStart, std::uint32_t poolTiles);
-    static constexpr std::uint32_t kMaxGatherPoolTiles = 64;
+    // The gather pipeline specialized for an ESTIMATOR_*, a GLOBAL_* mode and whether the frame
+    // starts sppm (sppmStarts), built on first use.
+    VkPipeline gather(std::uint32_t estimator, std::uint32_t globalMode, bool sppmStart);
     // kTracePhotons or kTracePixels for a frame: for scenes without media (hasMedia false), the
     // pipeline specialized without their code (SCENE_HAS_MEDIA, shared/medium.h), built on first use.
     VkPipeline tracing(Shader shader, bool hasMedia);
@@ -81,7 +78,8 @@ private:
                       const char* name);
 
     const Context& context_;
-    std::map<std::uint32_t, VkPipeline> gatherVariants_;
+    static constexpr std::uint32_t kGatherVariants = ESTIMATOR_COUNT * GLOBAL_MODE_COUNT * 2;
+    VkPipeline gatherVariants_[kGatherVariants] = {};
     VkPipeline withoutMedia_[2] = {};  // tracePhotons, tracePixels
 };
 

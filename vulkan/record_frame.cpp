@@ -109,21 +109,11 @@ void VulkanDevice::dispatchPasses(VkCommandBuffer cmd, Shader shader, std::uint3
     }
 }
 
-// With the pipeline of the frame's estimator and mode; sppm's pool takes gatherPoolTiles_ tiles a
-// workgroup (glsl/gather.comp).
+// With the pipeline of the frame's estimator and mode.
 void VulkanDevice::gather(VkCommandBuffer cmd, const FrameParams& params) {
-    const std::uint32_t pool = params.estimator == ESTIMATOR_SPPM ? gatherPoolTiles_ : 0u;
-    VkPipeline pipeline = pipelines_.gather(params.estimator, params.globalMode,
-                                            sppmStarts(params.estimator, params.view, params.accumulated), pool);
-    if (pool > 0) {
-        std::uint64_t tiles = std::uint64_t((params.width + PIXEL_TILE_X - 1) / PIXEL_TILE_X) *
-                              ((params.height + PIXEL_TILE_Y - 1) / PIXEL_TILE_Y);
-        GroupCount groups = groupsFor(tiles, pool);
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-        vkCmdDispatch(cmd, groups.x, groups.y, 1);
-    } else {
-        dispatchPixels(cmd, pipeline, params);
-    }
+    dispatchPixels(cmd, pipelines_.gather(params.estimator, params.globalMode,
+                                          sppmStarts(params.estimator, params.view, params.accumulated)),
+                   params);
     // This frame's radiance is written before accumulate reads it.
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);

@@ -40,15 +40,4 @@ int vulkanDeviceCount() { return countDevices(false); }
 
 int vulkanHardwareDeviceCount() { return countDevices(true); }
 
-std::uint32_t vulkanGatherPoolTiles(Device& device) {
-    auto* vulkan = dynamic_cast<vk::VulkanDevice*>(&device);
-    return vulkan ? vulkan->gatherPoolTiles() : 0u;
-}
-
-void setVulkanGatherPoolTiles(Device& device, std::uint32_t tiles) {
-    if (auto* vulkan = dynamic_cast<vk::VulkanDevice*>(&device)) {
-        vulkan->setGatherPoolTiles(tiles);
-    }
-}
-
 }  // namespace photon

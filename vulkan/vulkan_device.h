@@ -2,7 +2,6 @@
 // with what a windowed viewer needs, is in vulkan/device.h.
 #pragma once
 
-#include <cstdint>
 #include <memory>
 
 #include "core/frame/device.h"
@@ -19,10 +18,5 @@ int vulkanDeviceCount();
 
 // The same, counting only hardware GPUs (not CPU implementations such as lavapipe).
 int vulkanHardwareDeviceCount();
-
-// The sppm gather's pool of a Vulkan device: pixel tiles a workgroup, 0 for one invocation a pixel
-// (photon-bench sweeps it, starting from the device's own). Other devices report 0 and ignore it.
-std::uint32_t vulkanGatherPoolTiles(Device& device);
-void setVulkanGatherPoolTiles(Device& device, std::uint32_t tiles);
 
 }  // namespace photon

@@ -1,4 +1,4 @@
-#include "apps/launch_bench.h"
+#include "apps/cuda_launch_bench.h"
 
 #include <chrono>
 #include <cstdio>
@@ -8,9 +8,6 @@
 #include "core/image/image.h"
 #ifdef PHOTON_HAVE_CUDA
 #include "cuda/cuda_device.h"
-#endif
-#ifdef PHOTON_HAVE_VULKAN
-#include "vulkan/vulkan_device.h"
 #endif
 
 namespace photon {
@@ -29,23 +26,9 @@ void setPageableReadback([[maybe_unused]] Renderer& backend, [[maybe_unused]] bo
 #endif
 }
 
-// The sppm gather's pools that the sweep measures: tiles a block or workgroup (0: no pool).
-constexpr std::uint32_t kGatherPools[] = {0u, 1u, 2u, 4u, 8u, 16u};
-
 }  // namespace
 
 void sweepLaunchShapes([[maybe_unused]] Renderer& backend, [[maybe_unused]] const std::function<void(const std::string&)>& measure) {
-#ifdef PHOTON_HAVE_VULKAN
-    if (backend.device().name() == "vulkan") {
-        const std::uint32_t start = vulkanGatherPoolTiles(backend.device());
-        for (std::uint32_t tiles : kGatherPools) {
-            setVulkanGatherPoolTiles(backend.device(), tiles);
-            measure("gather-pool-" + std::to_string(tiles));
-        }
-        setVulkanGatherPoolTiles(backend.device(), start);
-        return;
-    }
-#endif
 #ifdef PHOTON_HAVE_CUDA
     const LaunchConfig start = cudaLaunchConfig(backend.device());
     for (std::uint32_t photonBlock : {64u, 128u, 256u}) {
@@ -58,25 +41,7 @@ void sweepLaunchShapes([[maybe_unused]] Renderer& backend, [[maybe_unused]] cons
             measure(std::to_string(photonBlock) + "/" + std::to_string(bx) + "x" + std::to_string(by));
         }
     }
-    // The sppm gather's pool: tiles per block (0: a thread a pixel, no pool), at the start's shapes.
-    for (std::uint32_t tiles : kGatherPools) {
-        LaunchConfig c = start;
-        c.gatherTiles = tiles;
-        setCudaLaunchConfig(backend.device(), c);
-        measure("gather-pool-" + std::to_string(tiles));
-    }
     setCudaLaunchConfig(backend.device(), start);
-#endif
-}
-
-void setGatherPool([[maybe_unused]] Renderer& backend, [[maybe_unused]] std::uint32_t tiles) {
-#ifdef PHOTON_HAVE_CUDA
-    LaunchConfig c = cudaLaunchConfig(backend.device());
-    c.gatherTiles = tiles;
-    setCudaLaunchConfig(backend.device(), c);
-#endif
-#ifdef PHOTON_HAVE_VULKAN
-    setVulkanGatherPoolTiles(backend.device(), tiles);
 #endif
 }
 
