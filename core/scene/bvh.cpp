@@ -1,6 +1,5 @@
-// The host's BVH build: binned SAH (Wald 2007) in four phases, the last two of which also collapse
-// the binary tree into the wide layout (bvh_wide.cpp); the bins are bvh_bins.h, what the phases
-// share bvh_build.h.
+// The host's BVH build: binned SAH (Wald 2007) in four phases; the bins are bvh_bins.h, what the
+// phases share bvh_build.h.
 //
 // 1. Prepare: every primitive's doubled centroid (lo + hi of its box) per axis into three float
 //    arrays, and the identity into the index array that the hierarchy partitions. Boxes are not
@@ -19,13 +18,10 @@
 //    where the SAH cost is lowest, and is partitioned in place (Hoare); its children's boxes are
 //    the union of their bins (or, for a sampled node, measured as the partition settles them),
 //    their centroids' bounds are measured as it settles them. A node of 5 to 8 primitives becomes
-//    two leaves, cut where its sorted centroids give the lowest SAH cost. The same thread then
-//    collapses the subtree's binary nodes, still in its cache, into the subtree's own wide nodes;
-//    the binary nodes' memory is the thread's scratch, reused by its next subtree, so the binary
-//    tree is never kept whole.
-// 4. Top: the top nodes get their boxes and the binary tree is measured; the top nodes are
-//    collapsed into wide nodes (each subtree's root a wide node of its own) and every subtree's
-//    wide nodes are placed after them.
+//    two leaves, cut where its sorted centroids give the lowest SAH cost.
+// 4. Gather: the top nodes get their boxes; every subtree's nodes are numbered after the earlier
+//    subtrees' but stay in the subtree's own array (BinaryBvh), where the collapse to the wide
+//    layout (bvh_wide.cpp) reads them: the binary tree is never copied into one array.
 //
 // The output depends on the scene alone, never on the thread count or on timing: chunks and
 // subtrees are cut by size, every chunk's result has its own slot, bins and boxes merge by min and
@@ -81,14 +77,14 @@ void prepare(Primitives& p, std::size_t total) {
 
 }  // namespace
 
-BvhStats buildBvh(const Scene& scene, std::vector<WideBvhNode>& wide, std::vector<std::uint32_t>& refs) {
+BvhStats buildBinaryBvh(const Scene& scene, BinaryBvh& binary, std::vector<std::uint32_t>& refs) {
     Clock::time_point start = Clock::now();
+    binary = BinaryBvh{};
     refs.clear();
     BvhStats stats;
     const std::size_t total = scene.spheres.size() + scene.quads.size() + scene.triangles.size();
     stats.primitives = std::uint32_t(total);
     if (total == 0) {
-        wide.clear();
         stats.buildSeconds = secondsSince(start);
         return stats;
     }
@@ -96,11 +92,6 @@ BvhStats buildBvh(const Scene& scene, std::vector<WideBvhNode>& wide, std::vecto
     // The references, sized while the centroids are made; the top levels' partitions pass
     // through them before the subtrees write them.
     SizedOnHelper<std::uint32_t> sizedRefs(refs, total, total);
-    // The wide nodes, sized while the tree is built: the bench's meshes have a wide node per 6.8
-    // primitives, the estimate is a little more (widenTop sizes them exactly). Address space is
-    // reserved for half a node a primitive (untouched pages cost nothing), so that a tree larger
-    // than the estimate is not moved.
-    SizedOnHelper<WideBvhNode> sizedWide(wide, total / 2 + 64, total * 3 / 20);
 
     Primitives p{scene, refMap, {}, {}};
     prepare(p, total);
@@ -111,23 +102,28 @@ BvhStats buildBvh(const Scene& scene, std::vector<WideBvhNode>& wide, std::vecto
     std::vector<Subtree> subtrees = buildTopLevels(p, std::uint32_t(total), sizedRefs.get().data(), top);
     stats.topSeconds = secondsSince(topStart);
 
-    // The subtrees, largest first; each into its own wide nodes.
+    // The subtrees, largest first; each into its own nodes.
     Clock::time_point subtreeStart = Clock::now();
     buildSubtrees(p, sizedRefs.get().data(), subtrees);
     stats.subtreeSeconds = secondsSince(subtreeStart);
 
-    // The top nodes, their boxes from their children's (children come after their parents); a
-    // subtree's root is numbered after the top nodes, subtree j as top.size() + j.
+    // The top nodes, their boxes from their children's (children come after their parents); each
+    // subtree's nodes numbered after the earlier subtrees' (they stay where they were built).
     Clock::time_point flattenStart = Clock::now();
     Measure measure;
-    auto topCount = std::uint32_t(top.size());
-    std::vector<BvhNode> nodes(top.empty() ? 1 : top.size());
-    Box rootBox;
+    binary.offsets.resize(subtrees.size());
+    binary.subtrees.resize(subtrees.size());
+    auto count = std::uint32_t(top.size());
+    for (std::size_t k = 0; k < subtrees.size(); ++k) {
+        binary.offsets[k] = count;
+        count += std::uint32_t(subtrees[k].nodes.size());
+    }
+    std::vector<BvhNode>& nodes = binary.top;
+    nodes.resize(top.empty() ? 1 : top.size());
     if (top.empty()) {
         // The root is a leaf or a subtree: an inner root with it as its first child and no second.
         const Subtree& s = subtrees[0];
-        rootBox = s.box;
-        if (s.nodes == 0) {
+        if (s.nodes.empty()) {
             nodes[0] = emptyNode();
             fill(nodes[0], false, s.box, s.first, s.count, 0, true, measure);
         } else {
@@ -141,7 +137,7 @@ BvhStats buildBvh(const Scene& scene, std::vector<WideBvhNode>& wide, std::vecto
                 std::uint32_t c = top[k].child[side];
                 if (top[k].subtree[side]) {
                     const Subtree& s = subtrees[c];
-                    fill(n, side == 1, s.box, s.first, s.count, topCount + c, s.nodes == 0, measure);
+                    fill(n, side == 1, s.box, s.first, s.count, binary.offsets[c], s.nodes.empty(), measure);
                     topBoxes[k].grow(s.box);
                 } else {
                     fill(n, side == 1, topBoxes[c], 0, 0, c, false, measure);
@@ -150,13 +146,18 @@ BvhStats buildBvh(const Scene& scene, std::vector<WideBvhNode>& wide, std::vecto
             }
             nodes[k] = n;
         }
-        rootBox = topBoxes[0];
+    }
+    for (std::size_t k = 0; k < subtrees.size(); ++k) {
+        binary.subtrees[k] = std::move(subtrees[k].nodes);
     }
     // SAH cost: Σ over inner nodes of area/root area times the cost of a visit, plus Σ over leaves
     // of area/root area times their primitives; the root's own visit included.
-    double rootArea = std::max(area(rootBox.lower(), rootBox.upper()), 1e-30);
+    std::size_t hint = 0;
+    const BvhNode r = binary.node(0, hint);
+    glm::vec3 lo = absent(r.lowerB) ? r.lowerA : glm::min(r.lowerA, r.lowerB);
+    glm::vec3 hi = absent(r.lowerB) ? r.upperA : glm::max(r.upperA, r.upperB);
+    double rootArea = std::max(area(lo, hi), 1e-30);
     double sum = measure.area;
-    std::uint32_t count = topCount;
     stats.leaves = measure.leaves;
     stats.depth = 1;
     // The top levels' depth: the deepest top node (they are made a level at a time).
@@ -167,16 +168,10 @@ BvhStats buildBvh(const Scene& scene, std::vector<WideBvhNode>& wide, std::vecto
         sum += s.measure.area;
         stats.leaves += s.measure.leaves;
         stats.depth = std::max(stats.depth, s.measure.depth);
-        count += s.nodes;
     }
     stats.sahCost = kTraversalCost + sum / rootArea;
     stats.nodes = count == 0 ? 1 : count;
     stats.flattenSeconds = secondsSince(flattenStart);
-
-    // The top collapsed, the subtrees' wide nodes after it.
-    Clock::time_point widenStart = Clock::now();
-    widenTop(nodes, subtrees, rootBox, sizedWide.get(), stats);
-    stats.widenSeconds = secondsSince(widenStart);
     stats.buildSeconds = secondsSince(start);
     return stats;
 }

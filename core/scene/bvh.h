@@ -4,12 +4,12 @@
 // Bounding Volume Hierarchies", 2007): at every node, primitives are binned by centroid into 8
 // bins along each axis that may hold the split and split where the surface area heuristic is
 // lowest; leaves hold at most 4 primitives. The top levels are split one level at a time on all
-// threads, the subtrees below them each by one thread (core/scene/bvh.cpp says how), which also
-// collapses its subtree into the four-wide, quantized nodes that the traversal reads (bvh_wide.cpp);
-// the top levels are collapsed last. The result depends on the scene alone: the same nodes and
-// references on any number of threads.
+// threads, the subtrees below them each by one thread (core/scene/bvh.cpp says how). Then
+// collapsed into the four-wide, quantized nodes that the traversal reads (bvh_wide.cpp). The
+// result depends on the scene alone: the same nodes and references on any number of threads.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -19,9 +19,9 @@ namespace photon {
 
 struct Scene;
 
-// A node of the binary hierarchy (the build's own, never kept: a subtree's until it is collapsed),
-// with both children's boxes. A child is an inner node (count 0: `child` is its node) or a leaf
-// (count primitives from the references' `child`); an absent child's box is a point at FLOAT_MAX.
+// A node of the binary hierarchy, with both children's boxes. A child is an inner node (count 0:
+// `child` is its node) or a leaf (count primitives from the references' `child`); an absent child's
+// box is a point at FLOAT_MAX.
 struct BvhNode {
     glm::vec3 lowerA; std::uint32_t childA;
     glm::vec3 upperA; std::uint32_t countA;
@@ -41,21 +41,52 @@ struct BvhStats {
     double wideSahCost = 0.0;      // of the wide tree, over its quantized boxes
     double buildSeconds = 0.0;
     // Where buildSeconds went: the primitives' centroids; the top levels (split across all
-    // threads); the subtrees below them, each built and collapsed into wide nodes (one thread
-    // each); the top nodes' boxes and the binary tree measured; the top nodes collapsed into wide
-    // ones and the subtrees' wide nodes placed after them.
+    // threads); the subtrees below them (one thread each); the top nodes' boxes and the tree
+    // measured; the binary tree collapsed into the wide one.
     double prepareSeconds = 0.0;
     double topSeconds = 0.0;
-    double subtreeSeconds = 0.0;  // the subtrees' wide collapse included
+    double subtreeSeconds = 0.0;
     double flattenSeconds = 0.0;
-    double widenSeconds = 0.0;    // the top's collapse and the concatenation only
+    double widenSeconds = 0.0;
 };
 
-// The traversed hierarchy of the scene's spheres, quads and triangles: its wide nodes (the root
-// first) and primitive references (kind << 30 | index); empty when there is no bounded primitive.
-// A wide node takes the children of its binary node and replaces the largest inner one by its own
-// two until it has four; boxes quantized outwards. Throws InputError if the traversal's stack
-// (BVH_STACK_SIZE) could overflow.
+// The binary hierarchy as its build leaves it, never copied into one array: the top levels' nodes,
+// then each subtree's own nodes, whose inner children are numbered from the subtree's first node.
+// Node g of the whole is top[g], or node g − offsets[k] of the last subtree k with offsets[k] ≤ g,
+// its inner children moved by offsets[k] (what one array would hold; the collapse reads it so).
+struct BinaryBvh {
+    std::vector<BvhNode> top;
+    std::vector<std::vector<BvhNode>> subtrees;
+    std::vector<std::uint32_t> offsets;  // each subtree's first node in the whole
+
+    // Node g of the whole; `hint` is the subtree read last, searched for again only when g is
+    // outside it (the collapse reads a subtree's nodes together).
+    BvhNode node(std::uint32_t g, std::size_t& hint) const {
+        if (g < top.size()) {
+            return top[g];
+        }
+        if (hint >= offsets.size() || g < offsets[hint] || g - offsets[hint] >= subtrees[hint].size()) {
+            hint = std::size_t(std::upper_bound(offsets.begin(), offsets.end(), g) - offsets.begin()) - 1;
+        }
+        const std::uint32_t offset = offsets[hint];
+        BvhNode n = subtrees[hint][g - offset];
+        n.childA += n.countA == 0 && n.lowerA.x != FLOAT_MAX ? offset : 0;
+        n.childB += n.countB == 0 && n.lowerB.x != FLOAT_MAX ? offset : 0;
+        return n;
+    }
+};
+
+// The binary hierarchy of the scene's spheres, quads and triangles into `binary` and `refs`
+// (primitive references, kind << 30 | index). Empty outputs when there is no bounded primitive.
+BvhStats buildBinaryBvh(const Scene& scene, BinaryBvh& binary, std::vector<std::uint32_t>& refs);
+
+// The binary hierarchy collapsed into wide nodes (the root first), each taking the children of
+// its binary node and replacing the largest inner one by its own two until it has four; boxes
+// quantized outwards. Sets the wide fields of `stats`. Throws InputError if the traversal's
+// stack (BVH_STACK_SIZE) could overflow.
+void widenBvh(const BinaryBvh& binary, std::vector<WideBvhNode>& wide, BvhStats& stats);
+
+// The traversed hierarchy: buildBinaryBvh, then widenBvh.
 BvhStats buildBvh(const Scene& scene, std::vector<WideBvhNode>& nodes, std::vector<std::uint32_t>& refs);
 
 }  // namespace photon

@@ -95,35 +95,16 @@ struct Primitives {
     }
 };
 
-// What the wide tree's statistics add up over a part of it.
-struct WideMeasure {
-    double area = 0.0;  // Σ over children of their decoded area × (a leaf's primitives, or 1)
-    std::uint32_t depth = 0;
-    std::uint32_t stack = 0;
-};
-
-// A wide node to make: from binary node `binary`, at `wide`, below ancestors that leave at most
-// `stack` entries on the traversal's stack, `depth` wide nodes from the root (the root: 1).
-struct WidePending {
-    std::uint32_t binary;
-    std::uint32_t wide;
-    std::uint32_t stack;
-    std::uint32_t depth;
-};
-
-// A subtree: where its root goes, its primitives and box, how many binary nodes it had (none when
-// the root is a leaf), and those collapsed into wide nodes (indexed from 0, its root first; moved
-// into the whole at the end).
+// A subtree: where its root goes, its primitives and box, and its nodes (indexed from 0, moved
+// into the whole at the end; none when the root is a leaf).
 struct Subtree {
     Slot slot;
     std::uint32_t first = 0;
     std::uint32_t count = 0;
     std::uint32_t depth = 1;
     Box box;  // measured by its build
-    std::uint32_t nodes = 0;
+    std::vector<BvhNode> nodes;
     Measure measure;
-    std::vector<WideBvhNode> wide;
-    WideMeasure wideMeasure;  // as if its root were the whole tree's (depth 1, nothing on the stack)
 };
 
 // A node of the top levels: where it goes and what its children are (a top node or a subtree).
@@ -140,21 +121,7 @@ std::vector<Subtree> buildTopLevels(const Primitives& p, std::uint32_t count, st
                                    std::vector<TopNode>& nodes);
 
 // Phase 3, the subtrees (bvh_subtrees.cpp): builds each subtree whole on one thread, largest
-// first, into binary nodes that the thread reuses, and collapses them into the subtree's wide
-// nodes while they are in its cache; leaves' references into `refs`.
+// first, into its own nodes; leaves' references into `refs`.
 void buildSubtrees(const Primitives& p, std::uint32_t* refs, std::vector<Subtree>& subtrees);
-
-// Phase 3's collapse (bvh_wide.cpp): a subtree's binary nodes (node 0 its root) into `wide`, its
-// root first, measured as if its root were the whole tree's; `queue` is scratch.
-void widenSubtree(const BvhNode* nodes, std::vector<WideBvhNode>& wide, std::vector<WidePending>& queue,
-                  WideMeasure& m);
-
-// Phase 4's collapse (bvh_wide.cpp): the top levels' binary nodes (`top`; child top.size() + j
-// is subtree j's root; with no top nodes the root is subtree 0's) collapsed into wide nodes that
-// never open a subtree's root, then every subtree's wide nodes placed after them. `rootBox` is the
-// scene's. Sets the wide fields of `stats`; throws InputError if the traversal's stack could
-// overflow.
-void widenTop(const std::vector<BvhNode>& top, std::vector<Subtree>& subtrees, const Box& rootBox,
-              std::vector<WideBvhNode>& wide, BvhStats& stats);
 
 }  // namespace photon::bvh_build

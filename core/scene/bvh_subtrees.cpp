@@ -1,6 +1,5 @@
 // Phase 3 of the BVH build (core/scene/bvh.cpp): the subtrees below the top levels, each built
-// whole, depth first, by one thread over its own copy of its primitives' boxes, then collapsed by
-// that thread into wide nodes (bvh_wide.cpp).
+// whole, depth first, by one thread over its own copy of its primitives' boxes.
 #include <mutex>
 
 #include "core/scene/bvh_build.h"
@@ -11,16 +10,11 @@
 namespace photon::bvh_build {
 namespace {
 
-// Scratch space of the subtree tasks: one set per task running at once, reused by the next (its
-// memory warm: no page faults, no growing). The binary nodes live here only until their subtree
-// is collapsed, and so do the wide ones until they are copied into an array of their size.
+// Scratch space of the subtree tasks: one set per task running at once, reused by the next.
 struct Scratch {
     std::unique_ptr<PrimBox[]> boxes;
     std::unique_ptr<std::uint32_t[]> ids;
     std::uint32_t capacity = 0;
-    std::vector<BvhNode> nodes;
-    std::vector<WideBvhNode> wide;
-    std::vector<WidePending> queue;
 };
 
 class ScratchPool {
@@ -93,25 +87,21 @@ public:
             constexpr int kStack = 2 * kMedianDepth + 64;
             Pending stack[kStack];
             int top = 0;
-            std::vector<BvhNode>& nodes = scratch.nodes;
-            nodes.clear();
-            if (nodes.capacity() < count / 2 + 1) {
-                nodes.reserve(count / 2 + 1);
-                adviseHugePages(nodes.data(), nodes.capacity() * sizeof(BvhNode));
-            }
+            s.nodes.reserve(count / 2 + 1);
+            adviseHugePages(s.nodes.data(), s.nodes.capacity() * sizeof(BvhNode));
             stack[top++] = {Slot{NONE, false}, Range{0, count, box, bounds, s.depth}};
             while (top > 0) {
                 Pending p = stack[--top];
                 if (p.range.count <= kMaxLeaf) {
-                    fill(nodes[p.slot.node], p.slot.second, p.range.box, p.range.first + first, p.range.count, 0,
+                    fill(s.nodes[p.slot.node], p.slot.second, p.range.box, p.range.first + first, p.range.count, 0,
                          true, m);
                     continue;
                 }
-                auto index = std::uint32_t(nodes.size());
+                auto index = std::uint32_t(s.nodes.size());
                 if (p.slot.node != NONE) {
-                    fill(nodes[p.slot.node], p.slot.second, p.range.box, 0, 0, index, false, m);
+                    fill(s.nodes[p.slot.node], p.slot.second, p.range.box, 0, 0, index, false, m);
                 }
-                nodes.push_back(emptyNode());
+                s.nodes.push_back(emptyNode());
                 m.depth = std::max(m.depth, p.range.depth);
                 if (p.range.count <= 2 * kMaxLeaf) {
                     // Two leaves, by the exact SAH cost along the longest axis.
@@ -119,8 +109,8 @@ public:
                     Box lb;
                     Box rb;
                     std::uint32_t k = splitSmall(boxes + at, ids + at, p.range.count, longestAxis(p.range.bounds), lb, rb);
-                    fill(nodes[index], false, lb, first + at, k, 0, true, m);
-                    fill(nodes[index], true, rb, first + at + k, p.range.count - k, 0, true, m);
+                    fill(s.nodes[index], false, lb, first + at, k, 0, true, m);
+                    fill(s.nodes[index], true, rb, first + at + k, p.range.count - k, 0, true, m);
                     continue;
                 }
                 Range left;
@@ -132,9 +122,6 @@ public:
                     throw InputError("the scene's bounding volume hierarchy is too deep to build");
                 }
             }
-            s.nodes = std::uint32_t(nodes.size());
-            widenSubtree(nodes.data(), scratch.wide, scratch.queue, s.wideMeasure);
-            s.wide.assign(scratch.wide.begin(), scratch.wide.end());
         }
         for (std::uint32_t k = 0; k < count; ++k) {
             refs_[first + k] = refMap_(ids[k]);
@@ -361,7 +348,7 @@ private:
 }  // namespace
 
 void buildSubtrees(const Primitives& p, std::uint32_t* refs, std::vector<Subtree>& subtrees) {
-    // The subtrees, largest first (so that the last to start are short); each into its own wide nodes.
+    // The subtrees, largest first (so that the last to start are short); each into its own nodes.
     std::vector<std::uint32_t> order(subtrees.size());
     for (std::uint32_t k = 0; k < order.size(); ++k) {
         order[k] = k;

@@ -5,30 +5,32 @@
 // it holds four or only leaves. A wide node's children come next to each other in the array, in
 // breadth-first order of the levels above the subtrees and of each subtree.
 //
-// Each subtree is collapsed by the thread that built it, right after it (its binary nodes still in
-// that thread's cache, their memory reused by its next subtree), into its own array (widenSubtree).
-// So a wide node of the top levels never opens a subtree's root: the root becomes a wide node of
-// its own, the root of its subtree's array. The top levels are then collapsed on one thread
-// (widenTop) and the subtrees' arrays placed after them in the order the top reached them, so the
-// nodes do not depend on the threads. A subtree measures its stack and depth from its own root;
-// they are moved by where the top put that root.
+// The top levels are collapsed on one thread until there are enough wide nodes left to collapse
+// for every thread; each of those is then the root of a subtree collapsed by one thread into its
+// own array, and the arrays are concatenated in order, so the nodes do not depend on the threads.
 //
 // Quantization: per axis, child boxes are origin + q · 2^(e − 127) for bytes q, the origin the
 // node's lower corner and e the least exponent whose 255 steps reach its upper corner. Every plane
 // is rounded outwards and checked in the float arithmetic the traversal decodes it with (q · 2^k
 // is exact, so a fused multiply-add gives the same sum), so a decoded box always holds its child.
+#include "core/scene/bvh.h"
+
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
 #include <string>
 
-#include "core/scene/bvh_build.h"
+#include "core/scene/scene.h"
+#include "core/scene/sized_on_helper.h"
 #include "core/system/error.h"
 #include "core/system/parallel.h"
 
-namespace photon::bvh_build {
+namespace photon {
 namespace {
+
+using Clock = std::chrono::steady_clock;
 
 // A child as the binary tree has it: a box and an inner node or a leaf's references.
 struct Child {
@@ -37,6 +39,19 @@ struct Child {
     std::uint32_t index;  // binary node (inner) or first reference (leaf)
     std::uint32_t count;  // 0: inner
 };
+
+// Reads the binary nodes as one array would hold them (BinaryBvh::node), remembering the subtree
+// it read last.
+struct BinaryReader {
+    const BinaryBvh& tree;
+    std::size_t hint = 0;
+    BvhNode operator[](std::uint32_t g) { return tree.node(g, hint); }
+};
+
+double surface(glm::vec3 lo, glm::vec3 hi) {
+    glm::dvec3 d = glm::max(glm::dvec3(hi) - glm::dvec3(lo), glm::dvec3(0.0));
+    return 2.0 * (d.x * d.y + d.y * d.z + d.z * d.x);
+}
 
 // The binary node's present children.
 int binaryChildren(const BvhNode& n, Child* out) {
@@ -51,15 +66,15 @@ int binaryChildren(const BvhNode& n, Child* out) {
 }
 
 // The children of binary node `b` as a wide node takes them (the largest inner one opened until
-// there are BVH_WIDTH; only nodes below `opens` may be opened); returns how many.
-int collapse(const BvhNode* binary, std::uint32_t opens, std::uint32_t b, Child* children) {
+// there are BVH_WIDTH); returns how many.
+int collapse(BinaryReader& binary, std::uint32_t b, Child* children) {
     int k = binaryChildren(binary[b], children);
     while (k < int(BVH_WIDTH)) {
         int largest = -1;
         double largestArea = -1.0;
         for (int i = 0; i < k; ++i) {
-            double a = area(children[i].lower, children[i].upper);
-            if (children[i].count == 0 && children[i].index < opens && a > largestArea) {
+            double a = surface(children[i].lower, children[i].upper);
+            if (children[i].count == 0 && a > largestArea) {
                 largest = i;
                 largestArea = a;
             }
@@ -144,12 +159,28 @@ void quantize(const Child* children, int k, WideBvhNode& n) {
     }
 }
 
-// Makes wide node `p` into nodes[p.wide] (opening binary nodes below `opens`), placing its inner
-// children at the end of `nodes` and adding them to `queue`.
-void makeNode(const BvhNode* binary, std::uint32_t opens, WidePending p, std::vector<WideBvhNode>& nodes,
-              std::vector<WidePending>& queue, WideMeasure& m) {
+// What the statistics add up over a part of the wide tree.
+struct WideMeasure {
+    double area = 0.0;  // Σ over children of their decoded area × (a leaf's primitives, or 1)
+    std::uint32_t depth = 0;
+    std::uint32_t stack = 0;
+};
+
+// A wide node to make: from binary node `binary`, at `wide`, below ancestors that leave at most
+// `stack` entries on the traversal's stack, `depth` wide nodes from the root (the root: 1).
+struct Pending {
+    std::uint32_t binary;
+    std::uint32_t wide;
+    std::uint32_t stack;
+    std::uint32_t depth;
+};
+
+// Makes wide node `p` into nodes[p.wide], placing its inner children at the end of `nodes` and
+// adding them to `queue`.
+void makeNode(BinaryReader& binary, Pending p, std::vector<WideBvhNode>& nodes, std::vector<Pending>& queue,
+              WideMeasure& m) {
     Child children[BVH_WIDTH];
-    int k = collapse(binary, opens, p.binary, children);
+    int k = collapse(binary, p.binary, children);
     WideBvhNode n{};
     quantize(children, k, n);
     // The traversal takes the nearest child next and leaves the others, leaves too, on its stack.
@@ -164,11 +195,11 @@ void makeNode(const BvhNode* binary, std::uint32_t opens, WidePending p, std::ve
                      decode(n.origin.z, (n.lowerZ >> shift) & 0xffu, scale.z));
         glm::vec3 hi(decode(n.origin.x, (n.upperX >> shift) & 0xffu, scale.x), decode(n.origin.y, (n.upperY >> shift) & 0xffu, scale.y),
                      decode(n.origin.z, (n.upperZ >> shift) & 0xffu, scale.z));
-        m.area += area(lo, hi) * (c.count == 0 ? 1.0 : double(c.count));
+        m.area += surface(lo, hi) * (c.count == 0 ? 1.0 : double(c.count));
         if (c.count == 0) {
             auto at = std::uint32_t(nodes.size());
             nodes.emplace_back();
-            queue.push_back(WidePending{c.index, at, below, p.depth + 1});
+            queue.push_back(Pending{c.index, at, below, p.depth + 1});
             n.children[i] = at;
             n.kinds |= WIDE_CHILD_INNER << shift;
         } else {
@@ -183,49 +214,68 @@ void makeNode(const BvhNode* binary, std::uint32_t opens, WidePending p, std::ve
     nodes[p.wide] = n;
 }
 
+// Wide nodes left waiting by the top levels, each the root of a subtree of its own: enough for
+// every thread, and fixed, so that the nodes' order does not depend on the thread count.
+constexpr std::size_t kSubtrees = 1024;
+
 }  // namespace
 
-void widenSubtree(const BvhNode* nodes, std::vector<WideBvhNode>& wide, std::vector<WidePending>& queue,
-                  WideMeasure& m) {
-    // Breadth first: queue[i] is made into wide[i].
-    m = WideMeasure{};
-    wide.assign(1, WideBvhNode{});
-    queue.assign(1, WidePending{0, 0, 0, 1});
-    for (std::size_t i = 0; i < queue.size(); ++i) {
-        makeNode(nodes, ~0u, queue[i], wide, queue, m);
+void widenBvh(const BinaryBvh& tree, std::vector<WideBvhNode>& wide, BvhStats& stats) {
+    Clock::time_point start = Clock::now();
+    stats.wideNodes = 0;
+    stats.wideDepth = 0;
+    stats.stack = 0;
+    stats.wideSahCost = 0.0;
+    if (tree.top.empty() && tree.subtrees.empty()) {
+        wide.clear();
+        stats.widenSeconds = std::chrono::duration<double>(Clock::now() - start).count();
+        return;
     }
-}
-
-void widenTop(const std::vector<BvhNode>& top, std::vector<Subtree>& subtrees, const Box& rootBox,
-              std::vector<WideBvhNode>& wide, BvhStats& stats) {
-    // The top nodes, breadth first; a subtree's root (top.size() + j) waits for its subtree's
-    // array, at the place the top gave it.
-    const auto topCount = std::uint32_t(top.size());
-    WideMeasure all;
+    // The top levels, breadth first, until enough nodes are waiting (a number fixed by the tree).
+    BinaryReader binary{tree};
+    WideMeasure top;
     std::vector<WideBvhNode> topNodes(1);
-    std::vector<WidePending> queue{WidePending{0, 0, 0, 1}};
-    std::vector<WidePending> roots;
-    for (std::size_t i = 0; i < queue.size(); ++i) {
-        if (queue[i].binary < topCount) {
-            makeNode(top.data(), topCount, queue[i], topNodes, queue, all);
-        } else {
-            roots.push_back(queue[i]);
-        }
+    std::vector<Pending> queue{Pending{0, 0, 0, 1}};
+    std::size_t next = 0;
+    while (next < queue.size() && queue.size() - next < kSubtrees) {
+        makeNode(binary, queue[next], topNodes, queue, top);
+        ++next;
     }
-    // A subtree's root takes its place in the top; its node i > 0 goes to offsets[r] + i − 1.
+    // The waiting nodes' subtrees, each into its own array, then after the top in order.
+    std::vector<Pending> roots(queue.begin() + std::ptrdiff_t(next), queue.end());
+    std::vector<std::vector<WideBvhNode>> subtrees(roots.size());
+    std::vector<WideMeasure> measures(roots.size());
     std::vector<std::uint32_t> offsets(roots.size());
-    auto count = std::uint32_t(topNodes.size());
+    std::uint32_t count = std::uint32_t(topNodes.size());
+    // A subtree's root takes the place that the top levels gave it; its descendants follow.
+    parallelFor(roots.size(), 1, [&](std::size_t a, std::size_t b) {
+        // Each subtree is made in `built`, whose memory the next reuses (warm, no page faults, no
+        // growing), and kept in an array of its size.
+        BinaryReader reader{tree};
+        std::vector<Pending> local;
+        std::vector<WideBvhNode> built;
+        for (std::size_t r = a; r < b; ++r) {
+            local.clear();
+            local.push_back(Pending{roots[r].binary, 0, roots[r].stack, roots[r].depth});
+            built.assign(1, WideBvhNode{});
+            for (std::size_t i = 0; i < local.size(); ++i) {
+                makeNode(reader, local[i], built, local, measures[r]);
+            }
+            subtrees[r].assign(built.begin(), built.end());
+        }
+    });
     for (std::size_t r = 0; r < roots.size(); ++r) {
         offsets[r] = count;
-        count += std::uint32_t(subtrees[roots[r].binary - topCount].wide.size()) - 1;
+        count += std::uint32_t(subtrees[r].size()) - 1;
     }
-    // `wide` may come sized already (buildBvh has a helper thread size it during the build).
+    // `wide` may come sized already (buildBvh has a helper thread size it during the binary build).
     wide.resize(count);
     std::copy(topNodes.begin(), topNodes.end(), wide.begin());
     parallelFor(roots.size(), 1, [&](std::size_t a, std::size_t b) {
         for (std::size_t r = a; r < b; ++r) {
-            // Inner children's indices are moved to match.
-            std::vector<WideBvhNode>& nodes = subtrees[roots[r].binary - topCount].wide;
+            // Node 0 of a subtree is its root (placed by the top levels), node i > 0 goes to
+            // offsets[r] + i − 1; inner children's indices are moved to match.
+            std::vector<WideBvhNode>& nodes = subtrees[r];
             for (std::size_t i = 0; i < nodes.size(); ++i) {
                 WideBvhNode n = nodes[i];
                 for (std::uint32_t c = 0; c < BVH_WIDTH; ++c) {
@@ -238,18 +288,27 @@ void widenTop(const std::vector<BvhNode>& top, std::vector<Subtree>& subtrees, c
             std::vector<WideBvhNode>().swap(nodes);
         }
     });
-    // Statistics, summed in the tree's order; a subtree's depth and stack start at its root's.
-    for (const WidePending& root : roots) {
-        const WideMeasure& m = subtrees[root.binary - topCount].wideMeasure;
+    // Statistics, summed in the tree's order.
+    WideMeasure all = top;
+    for (const WideMeasure& m : measures) {
         all.area += m.area;
-        all.depth = std::max(all.depth, root.depth - 1 + m.depth);
-        all.stack = std::max(all.stack, root.stack + m.stack);
+        all.depth = std::max(all.depth, m.depth);
+        all.stack = std::max(all.stack, m.stack);
     }
-    double rootArea = std::max(area(rootBox.lower(), rootBox.upper()), 1e-30);
+    Child rootChildren[2];
+    int rootCount = binaryChildren(binary[0], rootChildren);
+    glm::vec3 rootLower = rootChildren[0].lower;
+    glm::vec3 rootUpper = rootChildren[0].upper;
+    for (int i = 1; i < rootCount; ++i) {
+        rootLower = glm::min(rootLower, rootChildren[i].lower);
+        rootUpper = glm::max(rootUpper, rootChildren[i].upper);
+    }
+    double rootArea = std::max(surface(rootLower, rootUpper), 1e-30);
     stats.wideNodes = std::uint32_t(wide.size());
     stats.wideDepth = all.depth;
     stats.stack = all.stack;
     stats.wideSahCost = 1.0 + all.area / rootArea;
+    stats.widenSeconds = std::chrono::duration<double>(Clock::now() - start).count();
     if (stats.stack > BVH_STACK_SIZE) {
         throw InputError("the scene's bounding volume hierarchy could need " + std::to_string(stats.stack) +
                          " entries of its traversal's stack, more than its " + std::to_string(BVH_STACK_SIZE) +
@@ -257,4 +316,18 @@ void widenTop(const std::vector<BvhNode>& top, std::vector<Subtree>& subtrees, c
     }
 }
 
-}  // namespace photon::bvh_build
+BvhStats buildBvh(const Scene& scene, std::vector<WideBvhNode>& nodes, std::vector<std::uint32_t>& refs) {
+    // The wide nodes are sized while the binary tree is built: the bench's meshes have a wide node
+    // per 6.8 primitives, the estimate is a little more (widenBvh sizes them exactly). Address
+    // space is reserved for half a node a primitive (untouched pages cost nothing), so that a
+    // tree larger than the estimate is not moved.
+    const std::size_t primitives = scene.spheres.size() + scene.quads.size() + scene.triangles.size();
+    SizedOnHelper<WideBvhNode> sized(nodes, primitives / 2 + 64, primitives * 3 / 20);
+    BinaryBvh binary;
+    BvhStats stats = buildBinaryBvh(scene, binary, refs);
+    widenBvh(binary, sized.get(), stats);
+    stats.buildSeconds += stats.widenSeconds;
+    return stats;
+}
+
+}  // namespace photon
