@@ -35,8 +35,8 @@ void sweepLaunchShapes([[maybe_unused]] Renderer& backend, [[maybe_unused]] cons
         for (auto [bx, by] : {std::pair{8u, 8u}, {16u, 8u}, {32u, 4u}, {16u, 16u}, {32u, 8u}}) {
             LaunchConfig c = start;
             c.photonBlock = photonBlock;
-            c.pixelBlockX = bx;
-            c.pixelBlockY = by;
+            c.eyeBlockX = c.pixelBlockX = bx;
+            c.eyeBlockY = c.pixelBlockY = by;
             setCudaLaunchConfig(backend.device(), c);
             measure(std::to_string(photonBlock) + "/" + std::to_string(bx) + "x" + std::to_string(by));
         }

@@ -11,7 +11,8 @@
 
 namespace photon {
 
-// Runs `measure` once per CUDA launch shape (threads per photon block, pixel tile).
+// Runs `measure` once per CUDA launch shape (threads per photon block; one pixel tile for the eye
+// pass and every other per-pixel stage, each of which the table times apart).
 // Each shape starts from the backend's own configuration (its gridBlocks follow the device's SMs).
 void sweepLaunchShapes(Renderer& backend, const std::function<void(const std::string&)>& measure);
 

@@ -110,7 +110,7 @@ __device__ inline bool pixelOf(const Bindings& b, uint& pixel) {
     return x < b.params.width && y < b.params.height;
 }
 
-// At most 168 registers, for 6 blocks of 8x8 an SM instead of 4: the eye path's spills (1.3 KB, to
+// At most 168 registers, for 384 threads an SM (3 blocks of 16x8) instead of 256: the eye path's spills (1.3 KB, to
 // L1) cost less than the warps its 234 registers left idle (docs/performance.md, issue 19).
 __global__ void __maxnreg__(168) tracePixelsKernel(const __grid_constant__ Bindings b) {
     uint p;
@@ -159,9 +159,13 @@ __global__ void denoiseKernel(const __grid_constant__ Bindings b, uint pass) {
     }
 }
 
-dim3 pixelGrid(const Bindings& b, const LaunchConfig& c) {
-    return dim3((b.params.width + c.pixelBlockX - 1) / c.pixelBlockX, (b.params.height + c.pixelBlockY - 1) / c.pixelBlockY);
+dim3 tileGrid(const Bindings& b, std::uint32_t x, std::uint32_t y) {
+    return dim3((b.params.width + x - 1) / x, (b.params.height + y - 1) / y);
 }
+
+dim3 pixelGrid(const Bindings& b, const LaunchConfig& c) { return tileGrid(b, c.pixelBlockX, c.pixelBlockY); }
+
+dim3 eyeGrid(const Bindings& b, const LaunchConfig& c) { return tileGrid(b, c.eyeBlockX, c.eyeBlockY); }
 
 // The blocks of tracePhotonsKernel a device holds at once, for a block size: asked of the
 // occupancy API once per device and size (a frame would otherwise ask it every time).
@@ -225,7 +229,7 @@ void orderPhotons(const Bindings& b, const LaunchConfig& c, cudaStream_t s) {
 }
 
 void tracePixels(const Bindings& b, const LaunchConfig& c, cudaStream_t s) {
-    tracePixelsKernel<<<pixelGrid(b, c), dim3(c.pixelBlockX, c.pixelBlockY), 0, s>>>(b);
+    tracePixelsKernel<<<eyeGrid(b, c), dim3(c.eyeBlockX, c.eyeBlockY), 0, s>>>(b);
     CUDA_CHECK_LAUNCH("tracePixels");
 }
 
@@ -266,7 +270,7 @@ void gather(const Bindings& b, const LaunchConfig& c, cudaStream_t s) {
 }
 
 void tracePrimaryRays(const Bindings& b, std::uint32_t* hits, const LaunchConfig& c, cudaStream_t s) {
-    tracePrimaryRaysKernel<<<pixelGrid(b, c), dim3(c.pixelBlockX, c.pixelBlockY), 0, s>>>(b, hits);
+    tracePrimaryRaysKernel<<<eyeGrid(b, c), dim3(c.eyeBlockX, c.eyeBlockY), 0, s>>>(b, hits);
     CUDA_CHECK_LAUNCH("tracePrimaryRays");
 }
 

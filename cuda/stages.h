@@ -18,8 +18,12 @@ namespace photon {
 struct LaunchConfig {
     // Photon pass 256 and tiles 8x8: the fastest of photon-bench --launch-sweep's 15 shapes on
     // the H200 (Cornell 1080p, sppm: 2.984 ms against 3.038 for 128 and 16x8; docs/performance.md).
+    // The eye pass in tiles of 16x8: its fastest on the H100 (bunny 1080p 1.09 ms against 1.13,
+    // 1M triangles 0.93 against 0.96), where the gather keeps 8x8.
     std::uint32_t photonBlock = 256;  // threads per block of the photon pass
-    std::uint32_t pixelBlockX = 8;    // pixel tile of the eye pass and the gather
+    std::uint32_t eyeBlockX = 16;     // pixel tile of the eye pass (tracePixels, primary rays)
+    std::uint32_t eyeBlockY = 8;
+    std::uint32_t pixelBlockX = 8;    // pixel tile of the gather and the other per-pixel stages
     std::uint32_t pixelBlockY = 8;
     std::uint32_t gridBlocks = 1056;  // blocks of the grid-stride loops over stored photons
     bool pinnedReadback = true;       // images come back through pinned memory (else pageable)

@@ -15,6 +15,11 @@ PH_CONST uint GROUP_SIZE = 64u;       // invocations per workgroup of the per-ph
 #endif
 PH_CONST uint PIXEL_TILE_X = uint(PHOTON_PIXEL_TILE_X);
 PH_CONST uint PIXEL_TILE_Y = 8u;
+// The eye pass's tiles, EYE_TILE_X × PIXEL_TILE_Y (build option PHOTON_VULKAN_EYE_TILE_X).
+#ifndef PHOTON_EYE_TILE_X
+#define PHOTON_EYE_TILE_X 16
+#endif
+PH_CONST uint EYE_TILE_X = uint(PHOTON_EYE_TILE_X);
 PH_CONST uint MAX_GROUPS_X = 65535u;  // the smallest maxComputeWorkGroupCount[0] Vulkan allows;
                                       // larger dispatches wrap into y
 // Invocations of the photon pass's pool (shared/photon_trace.h, tracePhotonPool), fewer for fewer

@@ -8,7 +8,7 @@ layout(constant_id = 4) const bool SCENE_HAS_MEDIA = true;
 #include "shared/eye_trace.h"
 #include "glsl/dispatch.h"
 
-layout(local_size_x = PIXEL_TILE_X, local_size_y = PIXEL_TILE_Y) in;
+layout(local_size_x = EYE_TILE_X, local_size_y = PIXEL_TILE_Y) in;
 
 void main() {
     uint pixel;

@@ -78,7 +78,7 @@ private:
     void recordStage(VkCommandBuffer cmd, std::uint32_t stage, const FrameParams& params);
 #define PH_VULKAN_STAGE_FUNCTION(NAME, id, name, label) void name(VkCommandBuffer cmd, const FrameParams& params);
     PH_STAGES(PH_VULKAN_STAGE_FUNCTION)
-    void dispatchPixels(VkCommandBuffer cmd, VkPipeline pipeline, const FrameParams& params);
+    void dispatchPixels(VkCommandBuffer cmd, VkPipeline pipeline, const FrameParams& params, std::uint32_t tileX);
     void dispatchPasses(VkCommandBuffer cmd, Shader shader, std::uint32_t passes, const FrameParams& params);
     void timestamp(VkCommandBuffer cmd, std::uint32_t index);
 

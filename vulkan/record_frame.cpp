@@ -55,9 +55,9 @@ void VulkanDevice::timestamp(VkCommandBuffer cmd, std::uint32_t index) {
     }
 }
 
-// One invocation per pixel, in tiles.
-void VulkanDevice::dispatchPixels(VkCommandBuffer cmd, VkPipeline pipeline, const FrameParams& params) {
-    std::uint32_t tilesX = (params.width + PIXEL_TILE_X - 1) / PIXEL_TILE_X;
+// One invocation per pixel, in tiles `tileX` pixels wide.
+void VulkanDevice::dispatchPixels(VkCommandBuffer cmd, VkPipeline pipeline, const FrameParams& params, std::uint32_t tileX) {
+    std::uint32_t tilesX = (params.width + tileX - 1) / tileX;
     std::uint32_t tilesY = (params.height + PIXEL_TILE_Y - 1) / PIXEL_TILE_Y;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
     vkCmdDispatch(cmd, tilesX, tilesY, 1);
@@ -76,7 +76,7 @@ void VulkanDevice::tracePhotons(VkCommandBuffer cmd, const FrameParams& params) 
 }
 
 void VulkanDevice::tracePixels(VkCommandBuffer cmd, const FrameParams& params) {
-    dispatchPixels(cmd, pipelines_.tracing(kTracePixels, sceneHasMedia(params)), params);
+    dispatchPixels(cmd, pipelines_.tracing(kTracePixels, sceneHasMedia(params)), params, EYE_TILE_X);
     // The hit points are written before gather reads them.
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
@@ -113,14 +113,14 @@ void VulkanDevice::dispatchPasses(VkCommandBuffer cmd, Shader shader, std::uint3
 void VulkanDevice::gather(VkCommandBuffer cmd, const FrameParams& params) {
     dispatchPixels(cmd, pipelines_.gather(params.estimator, params.globalMode,
                                           sppmStarts(params.estimator, params.view, params.accumulated)),
-                   params);
+                   params, PIXEL_TILE_X);
     // This frame's radiance is written before accumulate reads it.
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
 }
 
 void VulkanDevice::accumulate(VkCommandBuffer cmd, const FrameParams& params) {
-    dispatchPixels(cmd, pipelines_.pipeline[kAccumulate], params);
+    dispatchPixels(cmd, pipelines_.pipeline[kAccumulate], params, PIXEL_TILE_X);
     // The running mean and the auxiliary images are written before denoise reads them; the
     // caller orders its own reads of the accumulation (recordInto()).
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
