@@ -31,6 +31,7 @@ void setPageableReadback([[maybe_unused]] Renderer& backend, [[maybe_unused]] bo
 void sweepLaunchShapes([[maybe_unused]] Renderer& backend, [[maybe_unused]] const std::function<void(const std::string&)>& measure) {
 #ifdef PHOTON_HAVE_CUDA
     const LaunchConfig start = cudaLaunchConfig(backend.device());
+    measure("default");
     for (std::uint32_t photonBlock : {64u, 128u, 256u}) {
         for (auto [bx, by] : {std::pair{8u, 8u}, {16u, 8u}, {32u, 4u}, {16u, 16u}, {32u, 8u}}) {
             LaunchConfig c = start;
@@ -40,6 +41,13 @@ void sweepLaunchShapes([[maybe_unused]] Renderer& backend, [[maybe_unused]] cons
             setCudaLaunchConfig(backend.device(), c);
             measure(std::to_string(photonBlock) + "/" + std::to_string(bx) + "x" + std::to_string(by));
         }
+    }
+    // The sppm gather's other register caps, the rest as the backend has them.
+    for (std::uint32_t registers : {64u, 128u}) {
+        LaunchConfig c = start;
+        c.gatherRegisters = registers;
+        setCudaLaunchConfig(backend.device(), c);
+        measure("gather-regs-" + std::to_string(registers));
     }
     setCudaLaunchConfig(backend.device(), start);
 #endif

@@ -12,7 +12,8 @@
 namespace photon {
 
 // Runs `measure` once per CUDA launch shape (threads per photon block; one pixel tile for the eye
-// pass and every other per-pixel stage, each of which the table times apart).
+// pass and every other per-pixel stage, each of which the table times apart) after the backend's own
+// configuration ("default"), then once per other register cap of the sppm gather.
 // Each shape starts from the backend's own configuration (its gridBlocks follow the device's SMs).
 void sweepLaunchShapes(Renderer& backend, const std::function<void(const std::string&)>& measure);
 

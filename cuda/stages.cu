@@ -10,7 +10,9 @@
 
 #include <algorithm>
 #include <mutex>
+#include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "core/system/error.h"
@@ -35,11 +37,12 @@ namespace PHOTON_KERNEL_NAMESPACE {
 // The gather is bound by memory latency: more resident warps hide more of it. With blocks of up to
 // 256 threads, 4 per SM leaves 64 registers a thread; final gather needs more and gets them.
 constexpr int kGatherThreads = 256;
-// (sppm too: with 128 registers and half the warps it measured 4.1 ms at 1080p against 3.0 ms.)
+// (sppm has a kernel of its own, gatherSppmKernel, under LaunchConfig::gatherRegisters.)
 constexpr int gatherMinBlocks(uint globalMode) { return globalMode == GLOBAL_DIRECT ? 4 : 1; }
 
 // At most 64 registers (4 blocks of 256 on an SM): the traversal's stack would otherwise cost a
-// quarter of the resident warps for a few spilled values.
+// quarter of the resident warps for a few spilled values. (80 and 86 registers measured 2-6% and
+// 15-26% slower on the H100: docs/performance.md, session 12.)
 __global__ void __launch_bounds__(256, 4) tracePhotonsKernel(const __grid_constant__ Bindings b) {
     tracePhotonPool(b);
 }
@@ -110,8 +113,9 @@ __device__ inline bool pixelOf(const Bindings& b, uint& pixel) {
     return x < b.params.width && y < b.params.height;
 }
 
-// At most 168 registers, for 384 threads an SM (3 blocks of 16x8) instead of 256: the eye path's spills (1.3 KB, to
-// L1) cost less than the warps its 234 registers left idle (docs/performance.md, issue 19).
+// At most 168 registers, for 384 threads an SM (3 blocks of 16x8) instead of 256: the eye path's
+// spills (1.3 KB, to L1) cost less than the warps its 221 registers left idle (docs/performance.md,
+// issue 19; on the H100 in session 12, 128 registers cost 44% on the Cornell box, 221 23%).
 __global__ void __maxnreg__(168) tracePixelsKernel(const __grid_constant__ Bindings b) {
     uint p;
     if (pixelOf(b, p)) {
@@ -135,6 +139,15 @@ __global__ void __launch_bounds__(kGatherThreads, gatherMinBlocks(GlobalMode)) g
     uint p;
     if (pixelOf(b, p)) {
         b.frameRadiance[p] = gatherStage(b, p, Estimator, GlobalMode, SppmStart);
+    }
+}
+
+// The sppm gather under a register cap of its own (LaunchConfig::gatherRegisters).
+template <bool SppmStart, int Registers>
+__global__ void __maxnreg__(Registers) gatherSppmKernel(const __grid_constant__ Bindings b) {
+    uint p;
+    if (pixelOf(b, p)) {
+        b.frameRadiance[p] = gatherStage(b, p, ESTIMATOR_SPPM, GLOBAL_DIRECT, SppmStart);
     }
 }
 
@@ -166,6 +179,23 @@ dim3 tileGrid(const Bindings& b, std::uint32_t x, std::uint32_t y) {
 dim3 pixelGrid(const Bindings& b, const LaunchConfig& c) { return tileGrid(b, c.pixelBlockX, c.pixelBlockY); }
 
 dim3 eyeGrid(const Bindings& b, const LaunchConfig& c) { return tileGrid(b, c.eyeBlockX, c.eyeBlockY); }
+
+// Calls launch(std::integral_constant<int, R>) for the cap R among the kernels' compiled `Caps`
+// that `registers` names. The parity kernels are compiled for the first (the default) alone.
+template <int... Caps, typename Launch>
+void withRegisters(std::uint32_t registers, const char* stage, Launch&& launch) {
+#ifdef PHOTON_PARITY_KERNELS
+    constexpr int kDefault[] = {Caps...};
+    (void)registers;
+    launch(std::integral_constant<int, kDefault[0]>());
+    (void)stage;
+#else
+    bool found = ((registers == std::uint32_t(Caps) ? (launch(std::integral_constant<int, Caps>()), true) : false) || ...);
+    if (!found) {
+        throw std::logic_error(std::string(stage) + ": no kernel compiled for " + std::to_string(registers) + " registers");
+    }
+#endif
+}
 
 // The blocks of tracePhotonsKernel a device holds at once, for a block size: asked of the
 // occupancy API once per device and size (a frame would otherwise ask it every time).
@@ -242,11 +272,15 @@ void gatherWith(const Bindings& b, const LaunchConfig& c, cudaStream_t s) {
         if (b.params.globalMode != GLOBAL_DIRECT) {
             throw std::logic_error("CUDA gather: sppm in global mode " + std::to_string(b.params.globalMode));
         }
-        if (sppmStarts(Estimator, b.params.view, b.params.accumulated)) {
-            gatherKernel<Estimator, GLOBAL_DIRECT, true><<<grid, block, 0, s>>>(b);
-        } else {
-            gatherKernel<Estimator, GLOBAL_DIRECT, false><<<grid, block, 0, s>>>(b);
-        }
+        bool start = sppmStarts(Estimator, b.params.view, b.params.accumulated);
+        withRegisters<80, 64, 128>(c.gatherRegisters, "gather", [&](auto registers) {
+            constexpr int kCap = decltype(registers)::value;
+            if (start) {
+                gatherSppmKernel<true, kCap><<<grid, block, 0, s>>>(b);
+            } else {
+                gatherSppmKernel<false, kCap><<<grid, block, 0, s>>>(b);
+            }
+        });
         return;
     }
     switch (b.params.globalMode) {

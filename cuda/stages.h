@@ -25,6 +25,10 @@ struct LaunchConfig {
     std::uint32_t eyeBlockY = 8;
     std::uint32_t pixelBlockX = 8;    // pixel tile of the gather and the other per-pixel stages
     std::uint32_t pixelBlockY = 8;
+    // Registers a thread of the sppm gather may use (ptxas's cap): 80, 64 or 128, each a kernel
+    // compiled for it (the parity kernels have 80 alone). 80 on the H100: 1M triangles 0.60 ->
+    // 0.52 ms, the bunny at 4K 3.12 -> 2.93, the Cornell box within 1.5% (docs/performance.md).
+    std::uint32_t gatherRegisters = 80;
     std::uint32_t gridBlocks = 1056;  // blocks of the grid-stride loops over stored photons
     bool pinnedReadback = true;       // images come back through pinned memory (else pageable)
 };
