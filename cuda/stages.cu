@@ -41,8 +41,8 @@ constexpr int kGatherThreads = 256;
 constexpr int gatherMinBlocks(uint globalMode) { return globalMode == GLOBAL_DIRECT ? 4 : 1; }
 
 // At most 64 registers (4 blocks of 256 on an SM): the traversal's stack would otherwise cost a
-// quarter of the resident warps for a few spilled values. (80 and 86 registers measured 2-6% and
-// 15-26% slower on the H100: docs/performance.md, session 12.)
+// quarter of the resident warps for a few spilled values. (On the H100, 80 registers measured 3-6%
+// slower on meshes and 86 13-26% slower everywhere: docs/performance.md, session 12.)
 __global__ void __launch_bounds__(256, 4) tracePhotonsKernel(const __grid_constant__ Bindings b) {
     tracePhotonPool(b);
 }
