@@ -282,16 +282,173 @@ PH_FN void orderChildren(PH_INOUT(float) entryA, PH_INOUT(uint) codeA, PH_INOUT(
     }
 }
 
-// The one traversal of the scene: the nearest hit within (0, ray.tMax) (QUERY_ANY: the first one
-// found). Planes one by one; then the four-wide hierarchy without recursion, in the manner of
-// Aila and Laine ("Understanding the Efficiency of Ray Traversal on GPUs", HPG 2009) and Ylitie et
-// al. (HPG 2017): a node's children are sorted by where the ray enters their boxes; the nearest
-// is taken next, the others go on a stack with their entry distances, nearest on top, and are
-// skipped when they come off it if a hit nearer than their box has been found meanwhile. Leaves
-// go through the stack like inner nodes (one place tests them, not one per child: the
+// A wide node's children that the ray enters within tMax, nearest first: their entry distances
+// (FLOAT_MAX: missed, or no child) and codes (wideChildCode). Equal entries keep their order.
+PH_FN void wideNodeChildren(BUF_PARAM uint node, PH_IN(RayFrame) frame, float tMax, PH_OUT(vec4) entry, PH_OUT(uvec4) code) {
+    WideBvhNode n = BUF(bvhNodes)[node];
+    vec3 scale = wideScale(n.scales);
+#ifdef PH_WIDE_BOX_SIMD
+    vec4 e = wideChildEntriesSimd(n, frame.origin, frame.inverseDirection, scale, tMax);
+#else
+    vec4 e = vec4(FLOAT_MAX);
+    for (uint i = 0u; i < BVH_WIDTH; ++i) {
+        if (((n.kinds >> (8u * i)) & 0xffu) == WIDE_CHILD_EMPTY) {
+            break;
+        }
+        e[i] = wideChildEntry(frame, n, scale, i, tMax);
+    }
+#endif
+    float e0 = e.x;
+    float e1 = e.y;
+    float e2 = e.z;
+    float e3 = e.w;
+    uint c0 = wideChildCode(n.children.x, n.kinds & 0xffu);
+    uint c1 = wideChildCode(n.children.y, (n.kinds >> 8u) & 0xffu);
+    uint c2 = wideChildCode(n.children.z, (n.kinds >> 16u) & 0xffu);
+    uint c3 = wideChildCode(n.children.w, n.kinds >> 24u);
+    orderChildren(e0, c0, e1, c1);
+    orderChildren(e2, c2, e3, c3);
+    orderChildren(e0, c0, e2, c2);
+    orderChildren(e1, c1, e3, c3);
+    orderChildren(e1, c1, e2, c2);
+    entry = vec4(e0, e1, e2, e3);
+    code = uvec4(c0, c1, c2, c3);
+}
+
+// The four-wide hierarchy's part of traceRay, in one loop over inner nodes and leaves alike, in
+// the manner of Aila and Laine ("Understanding the Efficiency of Ray Traversal on GPUs", HPG 2009)
+// and Ylitie et al. (HPG 2017): a node's children are sorted by where the ray enters their boxes;
+// the nearest is taken next, the others go on a stack with their entry distances, nearest on top,
+// and are skipped when they come off it if a hit nearer than their box has been found meanwhile.
+// Leaves go through the stack like inner nodes (one place tests them, not one per child: the
 // primitive tests are large). The host builds no hierarchy that needs more than BVH_STACK_SIZE.
 // Every backend walks the nodes in the same order, so that ties between equally near primitives
-// break alike.
+// break alike. True when a QUERY_ANY is answered.
+PH_FN bool traceWide(BUF_PARAM PH_IN(Ray) ray, PH_IN(RayFrame) frame, uint query, PH_INOUT(TraceResult) result) {
+    // A waiting child's code and entry distance side by side: one 8-byte access where a GPU keeps
+    // the stack in local memory.
+    uvec2 stack[BVH_STACK_SIZE];
+    uint depth = 0u;
+    uint code = 0u;  // the root
+    while (true) {
+        if ((code & WIDE_LEAF_CODE) != 0u) {
+            uint count = ((code >> WIDE_LEAF_COUNT_SHIFT) & 3u) + 1u;
+            if (traceLeaf(BUF_ARG code & WIDE_LEAF_FIRST_MASK, count, ray, frame, query, result)) {
+                return true;
+            }
+        } else {
+            vec4 e;
+            uvec4 c;
+            wideNodeChildren(BUF_ARG code, frame, result.t, e, c);
+            if (e.w < FLOAT_MAX) {
+                stack[depth] = uvec2(c.w, floatBitsToUint(e.w));
+                depth += 1u;
+            }
+            if (e.z < FLOAT_MAX) {
+                stack[depth] = uvec2(c.z, floatBitsToUint(e.z));
+                depth += 1u;
+            }
+            if (e.y < FLOAT_MAX) {
+                stack[depth] = uvec2(c.y, floatBitsToUint(e.y));
+                depth += 1u;
+            }
+            if (e.x < FLOAT_MAX) {
+                code = c.x;
+                continue;
+            }
+        }
+        // The nearest waiting child that a hit found since has not put out of reach.
+        bool next = false;
+        while (depth > 0u && !next) {
+            depth -= 1u;
+            uvec2 waiting = stack[depth];
+            code = waiting.x;
+            next = uintBitsToFloat(waiting.y) < result.t;
+        }
+        if (!next) {
+            return false;
+        }
+    }
+    return false;
+}
+
+#ifdef __cplusplus
+// traceWide for the lanes of a warp (Aila and Laine's "while-while" with speculative traversal):
+// inner nodes and leaves in loops of their own, and a lane that meets a leaf sets it aside and
+// goes on down the inner nodes until every lane of its warp holds one, so that the warp's lanes
+// test their leaves together instead of one lane's leaf at a time while the others wait. Leaves
+// are still tested in the order they are met, and a node that a hit has put out of reach since it
+// was met is skipped, so the hit is traceWide's: going on speculatively costs only the nodes
+// visited in vain. A lane alone (PH_ANY_LANE on the CPU, where the tests run it) tests its leaf
+// at once, and walks traceWide's nodes.
+//
+// CUDA traces with it (PH_SPECULATIVE_TRAVERSAL: its eye pass 5-15% faster on meshes, primary rays
+// 17-20%). GLSL has it not: NVIDIA's Vulkan driver ran the nested loops 1.5-2.6x slower without
+// the vote and 1.3-3.4x slower with it (subgroupAny; docs/performance.md, sessions 12 and 13).
+PH_FN bool traceWideSpeculative(BUF_PARAM PH_IN(Ray) ray, PH_IN(RayFrame) frame, uint query, PH_INOUT(TraceResult) result) {
+    uvec2 stack[BVH_STACK_SIZE];
+    uint depth = 0u;
+    uint code = 0u;      // the next node, the root first
+    float entry = 0.0f;  // where the ray enters it
+    bool more = true;    // whether there is a next node
+    uint leaf = 0u;      // a leaf set aside (0: none; a leaf's code is never 0)
+    while (more || leaf != 0u) {
+        while (more) {
+            bool pop = !(entry < result.t);
+            if (!pop && (code & WIDE_LEAF_CODE) != 0u) {
+                if (leaf != 0u) {
+                    break;  // a second leaf: test the first
+                }
+                leaf = code;
+                pop = true;
+            } else if (!pop) {
+                vec4 e;
+                uvec4 c;
+                wideNodeChildren(BUF_ARG code, frame, result.t, e, c);
+                if (e.w < FLOAT_MAX) {
+                    stack[depth] = uvec2(c.w, floatBitsToUint(e.w));
+                    depth += 1u;
+                }
+                if (e.z < FLOAT_MAX) {
+                    stack[depth] = uvec2(c.z, floatBitsToUint(e.z));
+                    depth += 1u;
+                }
+                if (e.y < FLOAT_MAX) {
+                    stack[depth] = uvec2(c.y, floatBitsToUint(e.y));
+                    depth += 1u;
+                }
+                code = c.x;
+                entry = e.x;
+                pop = !(e.x < FLOAT_MAX);
+            }
+            if (pop) {
+                more = false;
+                while (depth > 0u && !more) {
+                    depth -= 1u;
+                    uvec2 waiting = stack[depth];
+                    code = waiting.x;
+                    entry = uintBitsToFloat(waiting.y);
+                    more = entry < result.t;
+                }
+            }
+            if (!PH_ANY_LANE(leaf == 0u)) {
+                break;  // every lane holds a leaf
+            }
+        }
+        if (leaf != 0u) {
+            uint count = ((leaf >> WIDE_LEAF_COUNT_SHIFT) & 3u) + 1u;
+            if (traceLeaf(BUF_ARG leaf & WIDE_LEAF_FIRST_MASK, count, ray, frame, query, result)) {
+                return true;
+            }
+            leaf = 0u;
+        }
+    }
+    return false;
+}
+#endif
+
+// The one traversal of the scene: the nearest hit within (0, ray.tMax) (QUERY_ANY: the first one
+// found). Planes one by one, then the four-wide hierarchy.
 PH_FN TraceResult traceRay(BUF_PARAM PH_IN(Ray) ray, uint query) {
     TraceResult result;
     result.t = ray.tMax;
@@ -315,73 +472,11 @@ PH_FN TraceResult traceRay(BUF_PARAM PH_IN(Ray) ray, uint query) {
         traceLeaf(BUF_ARG 0u, BUF(params).scene.linearCount, ray, frame, query, result);
         return result;
     }
-    // A waiting child's code and entry distance side by side: one 8-byte access where a GPU keeps
-    // the stack in local memory.
-    uvec2 stack[BVH_STACK_SIZE];
-    uint depth = 0u;
-    uint code = 0u;  // the root
-    while (true) {
-        if ((code & WIDE_LEAF_CODE) != 0u) {
-            uint count = ((code >> WIDE_LEAF_COUNT_SHIFT) & 3u) + 1u;
-            if (traceLeaf(BUF_ARG code & WIDE_LEAF_FIRST_MASK, count, ray, frame, query, result)) {
-                return result;
-            }
-        } else {
-            WideBvhNode n = BUF(bvhNodes)[code];
-            vec3 scale = wideScale(n.scales);
-#ifdef PH_WIDE_BOX_SIMD
-            vec4 entry = wideChildEntriesSimd(n, frame.origin, frame.inverseDirection, scale, result.t);
+#ifdef PH_SPECULATIVE_TRAVERSAL
+    traceWideSpeculative(BUF_ARG ray, frame, query, result);
 #else
-            vec4 entry = vec4(FLOAT_MAX);
-            for (uint i = 0u; i < BVH_WIDTH; ++i) {
-                if (((n.kinds >> (8u * i)) & 0xffu) == WIDE_CHILD_EMPTY) {
-                    break;
-                }
-                entry[i] = wideChildEntry(frame, n, scale, i, result.t);
-            }
+    traceWide(BUF_ARG ray, frame, query, result);
 #endif
-            float e0 = entry.x;
-            float e1 = entry.y;
-            float e2 = entry.z;
-            float e3 = entry.w;
-            uint c0 = wideChildCode(n.children.x, n.kinds & 0xffu);
-            uint c1 = wideChildCode(n.children.y, (n.kinds >> 8u) & 0xffu);
-            uint c2 = wideChildCode(n.children.z, (n.kinds >> 16u) & 0xffu);
-            uint c3 = wideChildCode(n.children.w, n.kinds >> 24u);
-            orderChildren(e0, c0, e1, c1);
-            orderChildren(e2, c2, e3, c3);
-            orderChildren(e0, c0, e2, c2);
-            orderChildren(e1, c1, e3, c3);
-            orderChildren(e1, c1, e2, c2);
-            if (e3 < FLOAT_MAX) {
-                stack[depth] = uvec2(c3, floatBitsToUint(e3));
-                depth += 1u;
-            }
-            if (e2 < FLOAT_MAX) {
-                stack[depth] = uvec2(c2, floatBitsToUint(e2));
-                depth += 1u;
-            }
-            if (e1 < FLOAT_MAX) {
-                stack[depth] = uvec2(c1, floatBitsToUint(e1));
-                depth += 1u;
-            }
-            if (e0 < FLOAT_MAX) {
-                code = c0;
-                continue;
-            }
-        }
-        // The nearest waiting child that a hit found since has not put out of reach.
-        bool next = false;
-        while (depth > 0u && !next) {
-            depth -= 1u;
-            uvec2 waiting = stack[depth];
-            code = waiting.x;
-            next = uintBitsToFloat(waiting.y) < result.t;
-        }
-        if (!next) {
-            break;
-        }
-    }
     return result;
 }
 

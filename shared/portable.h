@@ -33,6 +33,9 @@
 //    PH_TALLY_ADD and PH_TALLY_MAX are atomics whose old value nobody reads, on counters that
 //    every thread of a stage hits (histograms, maxima): on CUDA a warp's threads that name the
 //    same counter combine their values first and send one atomic.
+//  - PH_ANY_LANE(condition) (C++ and CUDA): whether the condition holds for any lane of the
+//    caller's warp that runs the call with it; on the CPU, a warp of one, the condition itself.
+//    Only for deciding when lanes do work together, never what the work computes.
 #ifndef PHOTON_SHARED_PORTABLE_H
 #define PHOTON_SHARED_PORTABLE_H
 
@@ -190,6 +193,8 @@ __device__ inline void tallyCoalesced(std::uint32_t* counter, std::uint32_t valu
 #define PH_RESERVE_SLOT(counter) reserveSlotCoalesced(&(counter))
 #define PH_TALLY_ADD(lvalue, value) tallyCoalesced(&(lvalue), (value), cooperative_groups::plus<std::uint32_t>())
 #define PH_TALLY_MAX(lvalue, value) tallyCoalesced(&(lvalue), (value), cooperative_groups::greater<std::uint32_t>())
+#define PH_ANY_LANE(condition) (__any_sync(__activemask(), (condition)) != 0)
+#define PH_SPECULATIVE_TRAVERSAL  // intersect.h: the warp's lanes test their leaves together
 #else
 namespace photon {
 // GCC has no __atomic_fetch_max: a compare-and-swap loop, relaxed like the others.
@@ -205,6 +210,9 @@ inline std::uint32_t atomicMaxRelaxed(std::uint32_t& target, std::uint32_t value
 #define PH_RESERVE_SLOT(counter) PH_ATOMIC_ADD(counter, 1u)
 #define PH_TALLY_ADD(lvalue, value) (void)PH_ATOMIC_ADD(lvalue, value)
 #define PH_TALLY_MAX(lvalue, value) (void)PH_ATOMIC_MAX(lvalue, value)
+#ifndef PH_ANY_LANE  // a test may stand for a warp (tests/speculative_traversal_test.cpp)
+#define PH_ANY_LANE(condition) (condition)
+#endif
 #endif
 #endif
 
