@@ -51,19 +51,12 @@ int compareWithBruteForce(const Scene& scene, int rays, std::uint32_t seed) {
     test::SceneBindings sb(scene);
     const Bindings& b = sb.bindings;
     std::mt19937 random(seed);
-    glm::vec3 lo = sb.scene.boundsMin;
-    glm::vec3 extent = sb.scene.boundsMax - sb.scene.boundsMin;
-    std::uniform_real_distribution<float> u(-0.25f, 1.25f);
-    std::normal_distribution<float> g(0.0f, 1.0f);
     int differing = 0;
     for (int i = 0; i < rays; ++i) {
-        glm::vec3 origin = lo + extent * glm::vec3(u(random), u(random), u(random));
-        glm::vec3 d(g(random), g(random), g(random));
-        if (glm::dot(d, d) < 1e-6f) {
+        Ray ray;
+        if (!test::randomSceneRay(random, sb.scene, i, ray)) {
             continue;
         }
-        float tMax = i % 3 == 0 ? glm::length(extent) * 0.5f : FLOAT_MAX;
-        Ray ray = makeRay(origin, glm::normalize(d), tMax);
         TraceResult expected = bruteForce(sb.scene, b, ray);
         TraceResult actual = traceRay(b, ray, QUERY_CLOSEST);
         bool any = traceRay(b, ray, QUERY_ANY).kind != NONE;

@@ -19,8 +19,8 @@
 namespace photon {
 namespace {
 
-// Random rays from inside and around the scene's bounds, some of them short; returns those whose
-// results differ (-1: the scene has no hierarchy).
+// Random rays (test::randomSceneRay); returns those whose results differ (-1: the scene has no
+// hierarchy).
 int compareTraversals(const Scene& scene, int rays, std::uint32_t seed) {
     test::SceneBindings sb(scene);
     const Bindings& b = sb.bindings;
@@ -28,22 +28,15 @@ int compareTraversals(const Scene& scene, int rays, std::uint32_t seed) {
         return -1;
     }
     std::mt19937 random(seed);
-    glm::vec3 lo = sb.scene.boundsMin;
-    glm::vec3 extent = sb.scene.boundsMax - sb.scene.boundsMin;
-    std::uniform_real_distribution<float> u(-0.25f, 1.25f);
-    std::normal_distribution<float> g(0.0f, 1.0f);
     int differing = 0;
     for (int i = 0; i < rays; ++i) {
-        glm::vec3 d(g(random), g(random), g(random));
-        glm::vec3 origin = lo + extent * glm::vec3(u(random), u(random), u(random));
-        if (glm::dot(d, d) < 1e-6f) {
+        Ray ray;
+        if (!test::randomSceneRay(random, sb.scene, i, ray)) {
             continue;
         }
-        float tMax = i % 3 == 0 ? glm::length(extent) * 0.25f : FLOAT_MAX;
-        Ray ray = makeRay(origin, glm::normalize(d), tMax);
         RayFrame frame = makeRayFrame(ray);
         for (uint query : {QUERY_CLOSEST, QUERY_ANY}) {
-            TraceResult one{tMax, NONE, NONE, 0.0f, 0.0f};
+            TraceResult one{ray.tMax, NONE, NONE, 0.0f, 0.0f};
             TraceResult warp = one;
             bool answered = traceWide(b, ray, frame, query, one);
             bool warpAnswered = traceWideSpeculative(b, ray, frame, query, warp);
