@@ -50,13 +50,10 @@ TraceResult bruteForce(const Scene& scene, const Bindings& b, const Ray& ray) {
 int compareWithBruteForce(const Scene& scene, int rays, std::uint32_t seed) {
     test::SceneBindings sb(scene);
     const Bindings& b = sb.bindings;
-    std::mt19937 random(seed);
     int differing = 0;
-    for (int i = 0; i < rays; ++i) {
-        Ray ray;
-        if (!test::randomSceneRay(random, sb.scene, i, ray)) {
-            continue;
-        }
+    std::vector<Ray> all = test::randomSceneRays(sb.scene, rays, seed);
+    for (std::size_t i = 0; i < all.size(); ++i) {
+        const Ray& ray = all[i];
         TraceResult expected = bruteForce(sb.scene, b, ray);
         TraceResult actual = traceRay(b, ray, QUERY_CLOSEST);
         bool any = traceRay(b, ray, QUERY_ANY).kind != NONE;

@@ -19,7 +19,7 @@
 namespace photon {
 namespace {
 
-// Random rays (test::randomSceneRay); returns those whose results differ (-1: the scene has no
+// Random rays (test::randomSceneRays); returns those whose results differ (-1: the scene has no
 // hierarchy).
 int compareTraversals(const Scene& scene, int rays, std::uint32_t seed) {
     test::SceneBindings sb(scene);
@@ -27,13 +27,10 @@ int compareTraversals(const Scene& scene, int rays, std::uint32_t seed) {
     if (b.params.scene.bvhNodeCount == 0u) {
         return -1;
     }
-    std::mt19937 random(seed);
     int differing = 0;
-    for (int i = 0; i < rays; ++i) {
-        Ray ray;
-        if (!test::randomSceneRay(random, sb.scene, i, ray)) {
-            continue;
-        }
+    std::vector<Ray> all = test::randomSceneRays(sb.scene, rays, seed);
+    for (std::size_t i = 0; i < all.size(); ++i) {
+        const Ray& ray = all[i];
         RayFrame frame = makeRayFrame(ray);
         for (uint query : {QUERY_CLOSEST, QUERY_ANY}) {
             TraceResult one{ray.tMax, NONE, NONE, 0.0f, 0.0f};

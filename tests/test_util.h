@@ -64,20 +64,22 @@ inline double chiSquareThreshold(int dof, double z = 4.26) {
 
 // The shipped scenes: $PHOTON_SCENES_DIR if set (a build run from another checkout, as on the
 // GPU machine), else the source tree the tests were built from.
-// Ray i of a set of random rays from inside and around a scene's bounds (a quarter of them beyond
-// on every side) in random directions; every third one ends at half the bounds' diagonal. False
-// for a direction too short to normalize.
-inline bool randomSceneRay(std::mt19937& random, const Scene& scene, int i, Ray& ray) {
-    glm::vec3 extent = scene.boundsMax - scene.boundsMin;
+// Random rays from inside and around a scene's bounds (a quarter of them beyond on every side) in
+// random directions; every third one ends at half the bounds' diagonal.
+inline std::vector<Ray> randomSceneRays(const Scene& scene, int count, std::uint32_t seed) {
+    std::mt19937 random(seed);
     std::uniform_real_distribution<float> u(-0.25f, 1.25f);
     std::normal_distribution<float> g(0.0f, 1.0f);
-    glm::vec3 origin = scene.boundsMin + extent * glm::vec3(u(random), u(random), u(random));
-    glm::vec3 d(g(random), g(random), g(random));
-    if (glm::dot(d, d) < 1e-6f) {
-        return false;
+    glm::vec3 extent = scene.boundsMax - scene.boundsMin;
+    std::vector<Ray> rays;
+    for (int i = 0; i < count; ++i) {
+        glm::vec3 origin = scene.boundsMin + extent * glm::vec3(u(random), u(random), u(random));
+        glm::vec3 d(g(random), g(random), g(random));
+        if (glm::dot(d, d) >= 1e-6f) {
+            rays.push_back(makeRay(origin, glm::normalize(d), i % 3 == 0 ? glm::length(extent) * 0.5f : FLOAT_MAX));
+        }
     }
-    ray = makeRay(origin, glm::normalize(d), i % 3 == 0 ? glm::length(extent) * 0.5f : FLOAT_MAX);
-    return true;
+    return rays;
 }
 
 inline std::string scenesDir() {
