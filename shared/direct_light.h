@@ -32,9 +32,12 @@ PH_FN LightSample sampleDirectLight(BUF_PARAM PH_IN(Light) light, vec3 x, PH_INO
     switch (light.type) {
         case LIGHT_POINT:
         case LIGHT_SPOT: {
-            ls.point = pointPosition(light);
-            vec3 d = ls.point - x;
+            vec3 d = pointPosition(light) - x;
             float dist2 = dot(d, d);
+            if (!(dist2 < FLOAT_MAX)) {
+                break;  // farther than floats reach: no light arrives, and d has no direction
+            }
+            ls.point = pointPosition(light);
             ls.direction = d * (1.0f / sqrt(dist2));
             ls.radiance = pointIntensity(light, -ls.direction) / dist2;
             break;

@@ -142,6 +142,25 @@ TEST(DirectLight, SphereLightMatchesItsFluxAtADistance) {
     EXPECT_NEAR(e, 100.0 / (4.0 * 3.14159265 * 100.0), 0.002 * e);
 }
 
+TEST(DirectLight, LightsBeyondTheFloatRangeSendNothing) {
+    // A point or spot light farther from x than floats can square (a fuzzed scene's light at
+    // 3.4e38) sends no light, and its sample's direction stays a unit vector, not 0 or NaN.
+    for (bool spot : {false, true}) {
+        Scene s;
+        s.addPlane(vec3(0), vec3(0, 1, 0), s.addMaterial("m", makeDiffuse(vec3(0.5f))));
+        if (spot) {
+            s.addSpotLight(vec3(-3.5f, 3.5f, 3.4e38f), vec3(-2.7f, 1.9f, 1.9f), vec3(2.0f), 66.0f, 0.0f);
+        } else {
+            s.addPointLight(vec3(0.0f, 2e19f, 0.0f), vec3(1.0f));
+        }
+        test::SceneBindings sb(s);
+        Rng rng = rngCreate(0u, 0u, 4u, STREAM_CAMERA);
+        LightSample ls = sampleDirectLight(sb.bindings, sb.scene.lights[0], vec3(0), rng);
+        EXPECT_EQ(ls.radiance, vec3(0.0f)) << (spot ? "spot" : "point");
+        EXPECT_FLOAT_EQ(glm::length(ls.direction), 1.0f) << (spot ? "spot" : "point");
+    }
+}
+
 TEST(DirectLight, SpotIntensityMatchesEmittedPower) {
     // Integrating the spot's intensity over the sphere returns Φ.
     Scene s;
