@@ -163,6 +163,14 @@ void checkValue(double value, const std::string& name, const std::string& path, 
     }
 }
 
+// Every output voxel a density (the background shows where no active voxel or tile covers one,
+// which the active voxel count alone does not tell; a block's mean can round below 0).
+void checkDensities(const DensityGrid& out, const std::string& name, const std::string& path) {
+    for (std::size_t i = 0; i < out.density.size(); ++i) {
+        checkValue(double(out.density[i]), name, path, [&] { return "output voxel " + std::to_string(i); });
+    }
+}
+
 std::string coordText(const Coord& c) {
     return "(" + std::to_string(c.x()) + ", " + std::to_string(c.y()) + ", " + std::to_string(c.z()) + ")";
 }
@@ -261,6 +269,7 @@ DensityGrid resample(const GridT& grid, const std::string& name, std::uint32_t m
             }
         }
         forEachTileCell([&](std::size_t i, double, ValueT value) { out.density[i] = float(value); });
+        checkDensities(out, name, path);
         return out;
     }
     // Sums of each block's differences from the background, in double (a block adds up f³ voxels;
@@ -277,6 +286,7 @@ DensityGrid resample(const GridT& grid, const std::string& name, std::uint32_t m
     for (std::size_t i = 0; i < sum.size(); ++i) {
         out.density[i] = float(background + sum[i] / volume);
     }
+    checkDensities(out, name, path);
     return out;
 }
 
