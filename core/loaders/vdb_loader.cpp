@@ -217,7 +217,7 @@ DensityGrid resample(const GridT& grid, const std::string& name, std::uint32_t m
 
     // The background counts where a voxel of the (padded) box is inactive.
     const double background = double(grid.background());
-    double padded = double(out.resolution.x) * double(out.resolution.y) * double(out.resolution.z) * double(f * f * f);
+    double padded = double(out.resolution.x) * double(out.resolution.y) * double(out.resolution.z) * double(f) * double(f) * double(f);
     if (double(grid.activeVoxelCount()) < padded) {
         checkValue(background, name, path, [] { return std::string("its background (the value of inactive voxels)"); });
     }
