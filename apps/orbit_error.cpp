@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "core/frame/glass_pixels.h"
 #include "core/image/image_error.h"
 
 namespace photon {
@@ -117,8 +118,10 @@ nlohmann::json measureOrbit(const std::function<std::unique_ptr<Renderer>()>& ma
     nlohmann::json rows = nlohmann::json::array();
     const char* names[4] = {"restart_raw", "restart_denoised", "reproject_raw", "reproject_denoised"};
     std::vector<double> whole[4], away[4], ssim[4];
+    std::vector<double> glass[4];
     for (std::size_t i = 0; i < samples.size(); ++i) {
-        QualityMasks masks(references[i]);
+        CameraDesc camera = cameraAt(m.path, scene.camera, samples[i] * kFrameSeconds);
+        QualityMasks masks(references[i], glassPixels(scene, camera, settings));
         const Image* images[4] = {&before.raw[i], &before.denoised[i], &after.raw[i], &after.denoised[i]};
         if (!m.imagesDir.empty()) {
             std::string frame = std::to_string(samples[i] + 1);
@@ -134,7 +137,9 @@ nlohmann::json measureOrbit(const std::function<std::unique_ptr<Renderer>()>& ma
             whole[k].push_back(q.whole);
             away[k].push_back(q.away);
             ssim[k].push_back(q.ssim);
-            row[names[k]] = {{"rmse", q.whole}, {"rmse_away_from_focus", q.away}, {"ssim", q.ssim}};
+            glass[k].push_back(q.glass);
+            row[names[k]] = {{"rmse", q.whole}, {"rmse_away_from_focus", q.away}, {"ssim", q.ssim},
+                             {"rmse_glass", q.glass}, {"glass_off_25", q.glassOff}};
             std::printf(" %8.2f%% %8.2f%% %7.4f ", 100.0 * q.whole, 100.0 * q.away, q.ssim);
         }
         std::printf("\n");
@@ -143,8 +148,13 @@ nlohmann::json measureOrbit(const std::function<std::unique_ptr<Renderer>()>& ma
     nlohmann::json medians;
     std::printf("%6s ", "median");
     for (int k = 0; k < 4; ++k) {
-        medians[names[k]] = {{"rmse", median(whole[k])}, {"rmse_away_from_focus", median(away[k])}, {"ssim", median(ssim[k])}};
+        medians[names[k]] = {{"rmse", median(whole[k])}, {"rmse_away_from_focus", median(away[k])}, {"ssim", median(ssim[k])},
+                             {"rmse_glass", median(glass[k])}};
         std::printf(" %8.2f%% %8.2f%% %7.4f ", 100.0 * median(whole[k]), 100.0 * median(away[k]), median(ssim[k]));
+    }
+    std::printf("\nmedian through glass:");
+    for (int k = 0; k < 4; ++k) {
+        std::printf(" %s %.2f%%", names[k], 100.0 * median(glass[k]));
     }
     std::printf("\nbrightest pixel shown / the references' brightest: restart %.2f, reproject %.2f; frame ms: restart "
                 "%.3f, reproject %.3f (its reproject stage %.3f, denoise %.3f)\n",

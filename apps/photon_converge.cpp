@@ -19,6 +19,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "core/frame/glass_pixels.h"
 #include "core/frame/scene_settings.h"
 #include "core/render/devices.h"
 #include "apps/orbit_error.h"
@@ -63,16 +64,27 @@ Window parseWindow(const std::string& text, const Image& reference) {
     return w;
 }
 
+void printHeading() {
+    std::printf("%-34s %10s %9s %9s %8s %8s %9s %9s %8s %8s %7s %8s %7s %8s %7s\n", "estimator, frames", "time ms",
+                "rmse", "outside", "peak", "energy", "away", "edges", "focus E", "focus pk", "ssim", "glass", "off25",
+                "rest", "off25");
+}
+
 void printError(const std::string& label, double ms, const ImageError& e, const Quality& q) {
-    std::printf("%-34s %10.2f %9.4f %9.4f %8.3f %8.3f %9.4f %9.4f %8.3f %8.3f %7.4f\n", label.c_str(), ms, e.whole,
-                e.outside, e.peakRatio, e.energyRatio, q.away, q.edges, q.focusEnergy, q.focusPeak, q.ssim);
+    std::printf("%-34s %10.2f %9.4f %9.4f %8.3f %8.3f %9.4f %9.4f %8.3f %8.3f %7.4f %8.4f %7.4f %8.4f %7.4f\n",
+                label.c_str(), ms, e.whole, e.outside, e.peakRatio, e.energyRatio, q.away, q.edges, q.focusEnergy,
+                q.focusPeak, q.ssim, q.glass, q.glassOff, q.rest, q.restOff);
     std::fflush(stdout);
 }
 
+// The glass region's columns: the pixels whose camera ray first meets glass (core/frame/glass_pixels.h),
+// and the rest of the image away from the focus; each a relative RMSE and the share off by > 25%.
 nlohmann::json errorJson(const ImageError& e, const Quality& q) {
     return {{"rmse", e.whole},           {"rmse_outside_window", e.outside}, {"peak_ratio", e.peakRatio},
             {"energy_ratio", e.energyRatio}, {"rmse_away_from_focus", q.away},  {"rmse_edges", q.edges},
-            {"focus_energy_ratio", q.focusEnergy}, {"focus_peak_ratio", q.focusPeak}, {"ssim", q.ssim}};
+            {"focus_energy_ratio", q.focusEnergy}, {"focus_peak_ratio", q.focusPeak}, {"ssim", q.ssim},
+            {"rmse_glass", q.glass}, {"glass_off_25", q.glassOff}, {"rmse_rest_away", q.rest},
+            {"rest_off_25", q.restOff}};
 }
 
 // --set KEY=VALUE ...
@@ -118,6 +130,7 @@ struct ConvergeOptions {
     std::vector<std::string> overrides;
     std::string cameraPath;
     OrbitMeasurement orbit;
+    bool flicker = false;
 };
 
 void addOptions(CLI::App& app, ConvergeOptions& o) {
@@ -135,6 +148,9 @@ void addOptions(CLI::App& app, ConvergeOptions& o) {
     app.add_option("--times", o.timesText,
                    "Checkpoints in milliseconds of stage time, e.g. 16,33,100,400 (in place of frames 1, 2, 4, ...; "
                    "--frames still caps the frames)");
+    app.add_flag("--flicker", o.flicker,
+                 "With the denoiser: one frame more after each checkpoint, and how much the image shown changes "
+                 "(a still camera's flicker)");
     app.add_option("--images", o.imagesDir, "Write each checkpoint's images as PFM into this folder")->check(kFileName);
     app.add_option("--camera-path", o.cameraPath,
                    "orbit:SECONDS: the error while the camera moves, restarting and reprojecting, against references "
@@ -221,6 +237,15 @@ nlohmann::json measureCheckpoints(Renderer& backend, const RenderSettings& s, co
             printError(label + " denoised", ms + denoiseMs, de, dq);
             row["denoised"] = errorJson(de, dq);
             row["denoise_ms"] = denoiseMs;
+            if (o.flicker && f < o.maxFrames) {
+                // The next frame, as a still viewer shows it: how much its pixels change.
+                backend.renderFrame();
+                ms += backend.lastFrameStats().ms.total();
+                ++f;
+                double change = meanChange(backend.image(), denoised);
+                std::printf("%-34s flicker %.4f%% (frame %u against %u)\n", label.c_str(), 100.0 * change, f, f - 1);
+                row["flicker"] = change;
+            }
             if (!o.imagesDir.empty()) {
                 writeImage(o.imagesDir + "/" + name + "-" + std::to_string(f) + "-denoised.pfm", denoised, 0.0f,
                            Tonemap::Clamp);
@@ -255,11 +280,26 @@ int run(int argc, char** argv) {
     Image reference = readImage(o.referencePath);
     Window window = parseWindow(o.windowText, reference);
     std::vector<double> times = parseTimes(o.timesText);
-    QualityMasks masks(reference);
     std::printf("reference %s: %ux%u, window [%u, %u) x [%u, %u)\n", o.referencePath.c_str(), reference.width,
                 reference.height, window.x0, window.x1, window.y0, window.y1);
-    std::printf("%-34s %10s %9s %9s %8s %8s %9s %9s %8s %8s %7s\n", "estimator, frames", "time ms", "rmse", "outside",
-                "peak", "energy", "away", "edges", "focus E", "focus pk", "ssim");
+    if (o.scenePath.empty() && o.comparePath.empty()) {
+        throw InputError("a scene is needed (or --compare IMAGE)");
+    }
+    // With a scene (also beside --compare), its glass region is measured apart.
+    RenderSettings base;
+    Scene scene;
+    PixelMask glass;
+    if (!o.scenePath.empty()) {
+        scene = loadScene(o, base);
+        if (base.width != reference.width || base.height != reference.height) {
+            throw InputError("--reference: " + o.referencePath + " is " + std::to_string(reference.width) + "x" +
+                             std::to_string(reference.height) + ", the render " + std::to_string(base.width) + "x" +
+                             std::to_string(base.height));
+        }
+        glass = glassPixels(scene, scene.camera, base);
+    }
+    QualityMasks masks(reference, glass);
+    printHeading();
     Measure measure = [&](const Image& image) {
         return std::pair{compareWithReference(image, reference, window), measureQuality(image, reference, masks)};
     };
@@ -267,16 +307,6 @@ int run(int argc, char** argv) {
         auto [e, q] = measure(readImage(o.comparePath));
         printError(o.comparePath, 0.0, e, q);
         return 0;
-    }
-    if (o.scenePath.empty()) {
-        throw InputError("a scene is needed (or --compare IMAGE)");
-    }
-    RenderSettings base;
-    Scene scene = loadScene(o, base);
-    if (base.width != reference.width || base.height != reference.height) {
-        throw InputError("--reference: " + o.referencePath + " is " + std::to_string(reference.width) + "x" +
-                         std::to_string(reference.height) + ", the render " + std::to_string(base.width) + "x" +
-                         std::to_string(base.height));
     }
     std::unique_ptr<Renderer> backend = createRenderer(o.backendName, o.options);
     choosePhotons(base, backend->runsOnCpu());

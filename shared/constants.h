@@ -249,6 +249,8 @@ PH_CONST uint WRAP_CLAMP = 1u;           // clamp to the edge
 PH_CONST uint WRAP_MIRRORED_REPEAT = 2u;
 
 // Fixed capacities.
+PH_CONST uint EYE_SPLITS_MAX = 4u;        // most interfaces an eye path splits at (eye_trace.h)
+PH_CONST float BRANCH_NEIGHBOURS = 64.0f;  // photons in the first radius of a branch's estimate (eye_trace.h)
 PH_CONST uint KNN_MAX = 64u;              // largest k of the k-nearest estimator
 PH_CONST uint CAUSTIC_TARGETS_MAX = 64u;  // specular objects the caustic pass aims at
 PH_CONST uint LIGHTS_MAX = 64u;

@@ -242,6 +242,30 @@ PH_FN vec4 radiusQuery(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float
     return sum;
 }
 
+// The radius of the disc about x (geometric normal ng) that would hold k photons at the density of
+// the photons about it, read off the grid, not the photons: those of the 3 × 3 × 3 cells about x
+// (fewer at a bounded grid's border) over the area x's tangent plane cuts from their cube,
+// (3h)² / max|n_i|. 0 where those cells are empty. Averaged over a few cells, the density never
+// collapses into a caustic's focus as the k-th nearest photon's distance does.
+PH_FN float cellDensityRadius(BUF_PARAM PH_IN(GridParams) grid, vec3 x, vec3 ng, float k) {
+    vec3 edge = vec3(grid.cellSize);
+    CellQuery q = beginCellQuery(x, edge, grid.cellSize, grid);
+    float photons = 0.0f;
+    uint key;
+    while (nextCell(q, grid, key)) {
+        uint begin;
+        uint end;
+        cellRange(BUF_ARG grid, key, begin, end);
+        photons += float(end - begin);
+    }
+    if (photons == 0.0f) {
+        return 0.0f;
+    }
+    vec3 n = abs(ng);
+    float area = 9.0f * grid.cellSize * grid.cellSize / max(max(n.x, n.y), max(n.z, 1e-3f));
+    return sqrt(k * area / (PI * photons));
+}
+
 // The radius estimate: the query over the disc's area, for the kernel.
 PH_FN vec3 estimateRadius(BUF_PARAM PH_IN(GridParams) grid, PH_IN(Shading) s, float radius, uint kernel, float u) {
     vec3 sum = vec3(radiusQuery(BUF_ARG grid, s, radius, kernel, u, false));

@@ -192,13 +192,16 @@ struct PH_ALIGN16 FrameParams {
     // globalPaths/causticPaths: photons emitted this frame by the global and the caustic pass
     uint estimator; uint kernel; uint knnK; uint globalMode;
     uint gatherRays; uint lightSamples; uint view; uint flags;
-    uint pad2; uint accumulated; uint gatherBudget; float alpha;
+    uint eyeSplits; uint accumulated; uint gatherBudget; float alpha;
+    // eyeSplits: the interfaces where an eye path follows both branches (eye_trace.h);
     // accumulated: frames already averaged into the accumulation buffer (the progressive index i);
     // gatherBudget: photons a query visits per cell before it subsamples the cell (0: all);
     // alpha: sppm's α
-    uint pathFirst; uint pathCount; uint pad0; uint pad1;
+    uint pathFirst; uint pathCount; float branchShrink; uint pad1;
     // the paths this renderer traces, [pathFirst, pathFirst + pathCount) of the frame's
-    // globalPaths + causticPaths: all of them, or one rank's share when several GPUs split a frame
+    // globalPaths + causticPaths: all of them, or one rank's share when several GPUs split a frame;
+    // branchShrink: how far the radii of eye-path branches without a hit point have shrunk by this
+    // frame, as progressive photon mapping's (progressive.h; eye_trace.h)
     SpectralParams spectrum;
     Camera previousCamera;  // under FLAG_REPROJECT: the camera of the frame before (reproject.h)
 };
@@ -318,7 +321,7 @@ PH_SIZE(FrameParams, 64 + 48 + MAP_COUNT * (48 + 16) + 6 * 16 + 128 + 64); PH_OF
 PH_OFFSET(FrameParams, grids, 112); PH_OFFSET(FrameParams, sppm, 112 + MAP_COUNT * 48);
 PH_OFFSET(FrameParams, width, 112 + MAP_COUNT * 64);
 PH_OFFSET(FrameParams, globalPaths, 128 + MAP_COUNT * 64); PH_OFFSET(FrameParams, estimator, 144 + MAP_COUNT * 64);
-PH_OFFSET(FrameParams, gatherRays, 160 + MAP_COUNT * 64); PH_OFFSET(FrameParams, pad2, 176 + MAP_COUNT * 64);
+PH_OFFSET(FrameParams, gatherRays, 160 + MAP_COUNT * 64); PH_OFFSET(FrameParams, eyeSplits, 176 + MAP_COUNT * 64);
 PH_OFFSET(FrameParams, alpha, 188 + MAP_COUNT * 64); PH_OFFSET(FrameParams, pathFirst, 192 + MAP_COUNT * 64);
 PH_OFFSET(FrameParams, spectrum, 208 + MAP_COUNT * 64);
 PH_OFFSET(FrameParams, previousCamera, 336 + MAP_COUNT * 64);

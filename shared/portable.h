@@ -26,7 +26,7 @@
 //  - Buffer structs are declared `struct PH_ALIGN16 Name`.
 //  - Buffers are reached through BUF(name): a global buffer in GLSL, a member of the Bindings
 //    struct in C++ that every such function receives first (BUF_PARAM / BUF_ARG; BUF_PARAM_ALONE
-//    where it is the only parameter).
+//    and BUF_ARG_ALONE where it is the only parameter).
 //  - Atomics are PH_ATOMIC_ADD(buffer element, value) and PH_ATOMIC_MAX, which return the old
 //    value: GLSL's atomicAdd/atomicMax, CUDA's, relaxed __atomic builtins on the CPU. PH_RESERVE_SLOT(counter)
 //    hands out one slot of an append buffer (on CUDA, one atomic per warp for all its threads).
@@ -61,6 +61,7 @@
 #define BUF_PARAM
 #define BUF_ARG
 #define BUF_PARAM_ALONE
+#define BUF_ARG_ALONE
 #define BUF(name) name
 #define PH_ATOMIC_ADD(lvalue, value) atomicAdd(lvalue, value)
 #define PH_ATOMIC_MAX(lvalue, value) atomicMax(lvalue, value)
@@ -124,6 +125,7 @@
 #define BUF_PARAM const Bindings &bindings,
 #define BUF_ARG bindings,
 #define BUF_PARAM_ALONE const Bindings &bindings
+#define BUF_ARG_ALONE bindings
 #define BUF(name) bindings.name
 
 #ifdef __CUDACC__

@@ -52,34 +52,18 @@ PH_FN SppmPixel emptySppmPixel() {
 }
 
 // The first radius at a visible point: the disc that would hold firstNeighbours photons of this
-// frame at the density of the photons about it. The density is read off the grid, not the
-// photons: the photons of the 3 × 3 × 3 cells about the point over the area its tangent plane cuts
-// from their cube, (3h)² / max|n_i|. That costs 27 cell lookups and no photon (a radius search
-// over the photons doubled the first frame's gather), measures the density over a few cells (the
-// k-th nearest photon's distance collapses into a caustic's focus, the knn estimate's bias) and
-// keeps the radius within [SPPM_FIRST_MIN_FOOTPRINTS, SPPM_FIRST_MAX_GUESSES · the guess]; a point
+// frame at the density of the photons about it, read off the grid (cellDensityRadius: 27 cell
+// lookups and no photon; a radius search over the photons doubled the first frame's gather, and
+// the k-th nearest photon's distance collapses into a caustic's focus, the knn estimate's bias),
+// within [SPPM_FIRST_MIN_FOOTPRINTS, SPPM_FIRST_MAX_GUESSES · the guess]; a point
 // whose cells are empty keeps the even-spread guess, firstFootprints footprints.
 PH_FN float sppmFirstRadius(BUF_PARAM uint map, PH_IN(Shading) s, float footprint) {
     GridParams grid = BUF(params).grids[map];
     float guess = footprint * BUF(params).sppm[map].firstFootprints;
-    // The cells within a cell's edge of the point: 3 a side, fewer at a bounded grid's border.
-    vec3 edge = vec3(grid.cellSize);
-    CellQuery q = beginCellQuery(s.position, edge, grid.cellSize, grid);
-    float photons = 0.0f;
-    uint key;
-    while (nextCell(q, grid, key)) {
-        uint begin;
-        uint end;
-        cellRange(BUF_ARG grid, key, begin, end);
-        photons += float(end - begin);
-    }
-    if (photons == 0.0f) {
+    float r = cellDensityRadius(BUF_ARG grid, s.position, s.geometricNormal, float(BUF(params).sppm[map].firstNeighbours));
+    if (r == 0.0f) {
         return guess;
     }
-    vec3 n = abs(s.geometricNormal);
-    float area = 9.0f * grid.cellSize * grid.cellSize / max(max(n.x, n.y), max(n.z, 1e-3f));
-    float k = float(BUF(params).sppm[map].firstNeighbours);
-    float r = sqrt(k * area / (PI * photons));
     return clamp(r, footprint * SPPM_FIRST_MIN_FOOTPRINTS, guess * SPPM_FIRST_MAX_GUESSES);
 }
 

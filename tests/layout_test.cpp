@@ -67,7 +67,7 @@ const Member kMembers[] = {
     PH_MEMBER(FrameParams, camera), PH_MEMBER(FrameParams, scene), PH_MEMBER(FrameParams, grids),
     PH_MEMBER(FrameParams, width), PH_MEMBER(FrameParams, seed), PH_MEMBER(FrameParams, globalPaths),
     PH_MEMBER(FrameParams, maxEyeDepth), PH_MEMBER(FrameParams, estimator), PH_MEMBER(FrameParams, globalMode),
-    PH_MEMBER(FrameParams, gatherRays), PH_MEMBER(FrameParams, flags),
+    PH_MEMBER(FrameParams, gatherRays), PH_MEMBER(FrameParams, flags), PH_MEMBER(FrameParams, eyeSplits),
     PH_MEMBER(FrameParams, accumulated), PH_MEMBER(FrameParams, gatherBudget), PH_MEMBER(FrameParams, alpha),
     PH_MEMBER(FrameParams, sppm), PH_MEMBER(FrameParams, pathFirst), PH_MEMBER(FrameParams, pathCount), PH_MEMBER(FrameParams, spectrum),
     PH_MEMBER(SpectralParams, wavelengths), PH_MEMBER(SpectralParams, cauchy), PH_MEMBER(SpectralParams, fromRgb0),

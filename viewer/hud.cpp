@@ -103,6 +103,7 @@ void renderSection(ViewState& state, const HudInfo& info) {
     }
     changed |= sliderUint("photon depth", s.maxPhotonDepth, 1, 32);
     changed |= sliderUint("eye depth", s.maxEyeDepth, 1, 32);
+    changed |= sliderUint("eye splits", s.eyeSplits, 0, EYE_SPLITS_MAX);
     if (s.estimator == Estimator::Knn) {
         changed |= sliderUint("k", s.k, 1, KNN_MAX);
     }

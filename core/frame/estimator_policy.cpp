@@ -121,6 +121,7 @@ FrameRadii EstimatorPolicy::frame(const RenderSettings& settings, std::uint32_t 
             }
             FrameRadii r = current_;
             r.radius[MAP_VOLUME] = progressiveRadius(first_.radius[MAP_VOLUME], settings.alpha, accumulated);
+            r.branchShrink = progressiveRadius(1.0f, settings.alpha, accumulated);
             return r;
         }
         case Estimator::Progressive: {
@@ -128,6 +129,7 @@ FrameRadii EstimatorPolicy::frame(const RenderSettings& settings, std::uint32_t 
             for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
                 r.radius[m] = progressiveRadius(first_.radius[m], settings.alpha, accumulated);
             }
+            r.branchShrink = progressiveRadius(1.0f, settings.alpha, accumulated);
             return r;
         }
         case Estimator::Cell:

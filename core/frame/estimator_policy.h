@@ -22,6 +22,7 @@ inline constexpr float kBoundedGridReachCells = 6.0f;
 struct FrameRadii {
     float radius[MAP_COUNT] = {};
     SppmMapParams sppm[MAP_COUNT] = {};
+    float branchShrink = 1.0f;  // FrameParams::branchShrink
 };
 
 // The first frame's radii: a map's radius from the settings, else from the footprints, else 1%

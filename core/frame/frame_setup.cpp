@@ -102,6 +102,7 @@ FrameParams makeFrameParams(const Scene& scene, const CameraDesc& camera, const 
     p.causticPaths = budget.causticPaths;
     p.maxPhotonDepth = settings.maxPhotonDepth;
     p.maxEyeDepth = settings.maxEyeDepth;
+    p.eyeSplits = settings.eyeSplits;
     p.estimator = static_cast<std::uint32_t>(settings.estimator);
     p.kernel = static_cast<std::uint32_t>(settings.kernel);
     p.knnK = settings.k;
@@ -121,6 +122,7 @@ FrameParams makeFrameParams(const Scene& scene, const CameraDesc& camera, const 
         p.sppm[map] = radii.sppm[map];
     }
     p.alpha = settings.alpha;
+    p.branchShrink = radii.branchShrink;
     p.pathFirst = 0;
     p.pathCount = static_cast<std::uint32_t>(budget.totalPaths());
     splitPaths(p, split);

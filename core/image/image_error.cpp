@@ -244,8 +244,56 @@ double displaySsim(const Image& image, const Image& reference) {
     return total / 3.0;
 }
 
-QualityMasks::QualityMasks(const Image& reference)
-    : focus(brightestPixels(reference, 0.005)), edges(edgePixels(reference, 0.25)) {}
+double shareOff(const Image& image, const Image& reference, const PixelMask& mask, double tolerance) {
+    checkSizes(image, reference);
+    double sum = 0.0;
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < mask.size(); ++i) {
+        if (mask[i]) {
+            sum += luminance(reference.pixels[i]);
+            ++count;
+        }
+    }
+    double floor = count > 0 ? 0.01 * sum / double(count) : 0.0;
+    std::size_t lit = 0, off = 0;
+    for (std::size_t i = 0; i < mask.size(); ++i) {
+        double r = luminance(reference.pixels[i]);
+        if (!mask[i] || !(r > floor)) {
+            continue;
+        }
+        ++lit;
+        double a = luminance(image.pixels[i]);
+        off += !(std::abs(a - r) <= tolerance * r) ? 1 : 0;  // a NaN pixel is off
+    }
+    return lit > 0 ? double(off) / double(lit) : 0.0;
+}
+
+double meanChange(const Image& image, const Image& before) {
+    checkSizes(image, before);
+    double change = 0.0, sum = 0.0;
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+        double l = luminance(before.pixels[i]);
+        change += std::abs(luminance(image.pixels[i]) - l);
+        sum += l;
+    }
+    return sum > 0.0 ? change / sum : change;
+}
+
+PixelMask both(const PixelMask& a, const PixelMask& b) {
+    PixelMask mask(a.size(), false);
+    for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) {
+        mask[i] = a[i] && b[i];
+    }
+    return mask;
+}
+
+QualityMasks::QualityMasks(const Image& reference, PixelMask glassRegion)
+    : focus(brightestPixels(reference, 0.005)), edges(edgePixels(reference, 0.25)), glass(std::move(glassRegion)) {
+    if (!glass.empty() && glass.size() != reference.pixels.size()) {
+        throw InputError("the glass region has " + std::to_string(glass.size()) + " pixels, the reference " +
+                         std::to_string(reference.pixels.size()));
+    }
+}
 
 Quality measureQuality(const Image& image, const Image& reference, const QualityMasks& masks) {
     Quality q;
@@ -255,6 +303,13 @@ Quality measureQuality(const Image& image, const Image& reference, const Quality
     q.focusEnergy = energyRatio(image, reference, masks.focus);
     q.focusPeak = peakRatio(image, reference, masks.focus);
     q.ssim = displaySsim(image, reference);
+    if (!masks.glass.empty()) {
+        PixelMask rest = both(!masks.focus, !masks.glass);
+        q.glass = relativeRmse(image, reference, masks.glass);
+        q.glassOff = shareOff(image, reference, masks.glass, 0.25);
+        q.rest = relativeRmse(image, reference, rest);
+        q.restOff = shareOff(image, reference, rest, 0.25);
+    }
     return q;
 }
 

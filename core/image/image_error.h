@@ -47,6 +47,14 @@ double relativeRmse(const Image& image, const Image& reference, const PixelMask&
 // Σ luminance over the mask / the reference's there, and the largest luminance there / the reference's.
 double energyRatio(const Image& image, const Image& reference, const PixelMask& mask);
 double peakRatio(const Image& image, const Image& reference, const PixelMask& mask);
+// The share of the mask's pixels whose luminance is off the reference's by more than `tolerance`
+// of it: specks, as the eye sees them. Pixels darker than 1% of the mask's mean reference
+// luminance are left out (a relative error of black means nothing).
+double shareOff(const Image& image, const Image& reference, const PixelMask& mask, double tolerance);
+PixelMask both(const PixelMask& a, const PixelMask& b);
+// Σ |L(image) - L(before)| / Σ L(before) over every pixel: how much an image changed from the one
+// before it (a still camera's flicker, frame to frame).
+double meanChange(const Image& image, const Image& before);
 
 // The structural similarity (Wang et al. 2004) of the two images' display values (linear radiance
 // clamped to [0, 1] through the sRGB curve), as scikit-image's structural_similarity computes it
@@ -55,14 +63,19 @@ double peakRatio(const Image& image, const Image& reference, const PixelMask& ma
 double displaySsim(const Image& image, const Image& reference);
 
 // Quality as issue 37 reports it: the whole image, away from the focus (outside the reference's
-// brightest 0.5%), at the edges, the focus's energy and peak, and SSIM.
+// brightest 0.5%), at the edges, the focus's energy and peak, and SSIM; and as issue 58 does, where
+// a glass region is given (core/frame/glass_pixels.h): its error and its share of pixels off by more
+// than 25%, beside the rest of the image away from the focus.
 struct Quality {
     double whole = 0.0, away = 0.0, edges = 0.0, focusEnergy = 0.0, focusPeak = 0.0, ssim = 0.0;
+    double glass = 0.0, glassOff = 0.0;  // in the glass region (0 without one)
+    double rest = 0.0, restOff = 0.0;    // away from the focus and outside the glass region
 };
 struct QualityMasks {
     PixelMask focus;  // brightestPixels(reference, 0.005)
     PixelMask edges;  // edgePixels(reference, 0.25)
-    explicit QualityMasks(const Image& reference);
+    PixelMask glass;  // empty: none given
+    explicit QualityMasks(const Image& reference, PixelMask glassRegion = {});
 };
 Quality measureQuality(const Image& image, const Image& reference, const QualityMasks& masks);
 

@@ -74,6 +74,10 @@ std::vector<SettingSpec> makeSpecs() {
         integer("gather_rays", "--gather-rays", "Final-gather rays per pixel", &R::gatherRays, 1, 1024),
         integer("light_samples", "--light-samples", "Shadow rays per light", &R::lightSamples, 1, 1024),
         integer("max_eye_depth", "--max-depth", "Specular bounces of an eye path", &R::maxEyeDepth, 1, 64),
+        integer("eye_splits", "--eye-splits",
+                "Glass and mirror-coat interfaces where an eye path follows both reflection and refraction "
+                "(Fresnel-weighted) instead of one at random",
+                &R::eyeSplits, 0, EYE_SPLITS_MAX),
         integer("max_photon_depth", "--max-photon-depth", "Surfaces a photon may hit", &R::maxPhotonDepth, 1, 64),
         choice("grid", "--grid", "Photon map grid", &R::grid),
         integer("grid_resolution", "--grid-resolution", "k of the bounded k^3 grid", &R::gridResolution, 1, 1024),

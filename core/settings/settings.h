@@ -59,6 +59,7 @@ struct RenderSettings {
     std::uint32_t gatherRays = 16;        // final-gather rays per hit point
     std::uint32_t lightSamples = 1;       // shadow rays per light per hit point
     std::uint32_t maxEyeDepth = 8;        // specular bounces an eye path may take
+    std::uint32_t eyeSplits = 2;          // glass and mirror-coat interfaces where an eye path follows both branches
     std::uint32_t maxPhotonDepth = 8;     // surfaces a photon may hit
     GridKind grid = GridKind::Hashed;
     std::uint32_t gridResolution = 64;    // k of the bounded k³ grid
