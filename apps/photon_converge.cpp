@@ -12,6 +12,7 @@
 //                   --photons 1000000 --frames 1024 --json smallpt-error.json
 //   photon-converge --compare image.pfm --reference ref.pfm     (one image: its error)
 //   photon-converge scenes/cornell.json --camera-path orbit:20 --backend cuda  (a moving view: apps/orbit_error.h)
+#include <algorithm>
 #include <cstdio>
 #include <functional>
 #include <sstream>
@@ -237,6 +238,10 @@ nlohmann::json measureCheckpoints(Renderer& backend, const RenderSettings& s, co
             printError(label + " denoised", ms + denoiseMs, de, dq);
             row["denoised"] = errorJson(de, dq);
             row["denoise_ms"] = denoiseMs;
+            if (!o.imagesDir.empty()) {
+                writeImage(o.imagesDir + "/" + name + "-" + std::to_string(f) + "-denoised.pfm", denoised, 0.0f,
+                           Tonemap::Clamp);
+            }
             if (o.flicker && f < o.maxFrames) {
                 // The next frame, as a still viewer shows it: how much its pixels change.
                 backend.renderFrame();
@@ -245,10 +250,6 @@ nlohmann::json measureCheckpoints(Renderer& backend, const RenderSettings& s, co
                 double change = meanChange(backend.image(), denoised);
                 std::printf("%-34s flicker %.4f%% (frame %u against %u)\n", label.c_str(), 100.0 * change, f, f - 1);
                 row["flicker"] = change;
-            }
-            if (!o.imagesDir.empty()) {
-                writeImage(o.imagesDir + "/" + name + "-" + std::to_string(f) + "-denoised.pfm", denoised, 0.0f,
-                           Tonemap::Clamp);
             }
         }
         rows.push_back(row);
@@ -297,6 +298,9 @@ int run(int argc, char** argv) {
                              std::to_string(base.height));
         }
         glass = glassPixels(scene, scene.camera, base);
+        std::size_t count = std::size_t(std::count(glass.begin(), glass.end(), true));
+        std::printf("glass region: %zu pixels (%.1f%%) whose camera ray first meets glass\n", count,
+                    100.0 * double(count) / double(glass.size()));
     }
     QualityMasks masks(reference, glass);
     printHeading();

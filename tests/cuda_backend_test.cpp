@@ -35,7 +35,10 @@ protected:
         return s;
     }
 
-    void compare(const Scene& scene, const RenderSettings& settings, const std::string& name, bool parity) {
+    // `fastTolerance`: the relative RMSE the fast build may differ by (its fast math moves photons
+    // across the edges of estimates' discs).
+    void compare(const Scene& scene, const RenderSettings& settings, const std::string& name, bool parity,
+                 double fastTolerance = 5e-3) {
         auto cpu = createRenderer("cpu");
         DeviceOptions options;
         options.parity = parity;
@@ -46,8 +49,8 @@ protected:
             test::expectSamePhotonMaps(actual.maps, expected.maps);
             test::expectSameHitPoints(actual.hitPoints, expected.hitPoints);
         }
-        test::expectImagesClose(actual.frame, expected.frame, parity ? 1e-4 : 5e-3, name + "-frame");
-        test::expectImagesClose(actual.image, expected.image, parity ? 1e-4 : 5e-3, name + "-image");
+        test::expectImagesClose(actual.frame, expected.frame, parity ? 1e-4 : fastTolerance, name + "-frame");
+        test::expectImagesClose(actual.image, expected.image, parity ? 1e-4 : fastTolerance, name + "-image");
     }
 };
 
@@ -125,12 +128,15 @@ TEST_F(CudaVsCpu, ReprojectionInTheParityBuild) {
 
 // The environment (the sky's map, and the studio environment of a model file without lights):
 // photons from the bounding box's faces and shadow rays by MIS, bit for bit in the parity build.
+// The fast build within 1%: the sky's glass balls split their eye paths, and each branch's
+// estimate of 64 photons (eye_trace.h) has the edges fast math moves photons across (0.77% on the
+// H100, session 14; 0.5% before the split).
 TEST_F(CudaVsCpu, EnvironmentScenesInTheParityBuild) {
     for (const char* file : {"sky.json", "bunny.obj"}) {
         SCOPED_TRACE(file);
         Scene scene = loadSceneFile(test::scenesDir() + "/" + file);
         compare(scene, small(), std::string("cuda-parity-") + file, true);
-        compare(scene, small(), std::string("cuda-fast-") + file, false);
+        compare(scene, small(), std::string("cuda-fast-") + file, false, 1e-2);
     }
 }
 

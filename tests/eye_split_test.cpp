@@ -133,7 +133,7 @@ TEST(EyeSplit, GlassRegionErrorFallsAgainstTheReference) {
         std::printf("cornell, %u splits: glass %.4f (off by 25%%: %.4f), rest away from the focus %.4f (%.4f)\n", splits,
                     q[splits / 2].glass, q[splits / 2].glassOff, q[splits / 2].rest, q[splits / 2].restOff);
     }
-    EXPECT_LT(q[1].glass, 0.5 * q[0].glass);
+    EXPECT_LT(q[1].glass, 0.6 * q[0].glass);
     EXPECT_LT(q[1].glassOff, 0.3 * q[0].glassOff);
     EXPECT_LE(q[1].rest, q[0].rest * 1.02);
 }

@@ -304,9 +304,10 @@ Quality measureQuality(const Image& image, const Image& reference, const Quality
     q.focusPeak = peakRatio(image, reference, masks.focus);
     q.ssim = displaySsim(image, reference);
     if (!masks.glass.empty()) {
+        PixelMask glass = both(!masks.focus, masks.glass);
         PixelMask rest = both(!masks.focus, !masks.glass);
-        q.glass = relativeRmse(image, reference, masks.glass);
-        q.glassOff = shareOff(image, reference, masks.glass, 0.25);
+        q.glass = relativeRmse(image, reference, glass);
+        q.glassOff = shareOff(image, reference, glass, 0.25);
         q.rest = relativeRmse(image, reference, rest);
         q.restOff = shareOff(image, reference, rest, 0.25);
     }

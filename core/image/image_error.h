@@ -64,11 +64,11 @@ double displaySsim(const Image& image, const Image& reference);
 
 // Quality as issue 37 reports it: the whole image, away from the focus (outside the reference's
 // brightest 0.5%), at the edges, the focus's energy and peak, and SSIM; and as issue 58 does, where
-// a glass region is given (core/frame/glass_pixels.h): its error and its share of pixels off by more
-// than 25%, beside the rest of the image away from the focus.
+// a glass region is given (core/frame/glass_pixels.h): the error away from the focus split into
+// the glass region and the rest, each with its share of pixels off by more than 25%.
 struct Quality {
     double whole = 0.0, away = 0.0, edges = 0.0, focusEnergy = 0.0, focusPeak = 0.0, ssim = 0.0;
-    double glass = 0.0, glassOff = 0.0;  // in the glass region (0 without one)
+    double glass = 0.0, glassOff = 0.0;  // in the glass region, away from the focus (0 without one)
     double rest = 0.0, restOff = 0.0;    // away from the focus and outside the glass region
 };
 struct QualityMasks {
