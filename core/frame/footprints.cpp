@@ -5,18 +5,15 @@
 #include <vector>
 
 #include "core/frame/estimator_policy.h"
+#include "core/frame/frame_setup.h"
 #include "shared/eye_trace.h"
 #include "shared/sppm.h"
 
 namespace photon {
 
 Footprints measureFootprints(const Scene& scene, const CameraDesc& camera, const RenderSettings& settings) {
-    RenderSettings s = settings;
-    s.pixelCenter = true;
-    PhotonBudget budget;
-    Bindings bindings{};
-    bindings.params = makeFrameParams(scene, camera, s, budget, 0, 0, FrameRadii{});
-    bindSceneArrays(bindings, scene);
+    const RenderSettings& s = settings;
+    Bindings bindings = hostSceneBindings(scene, camera, settings);
     std::uint32_t columns = std::min<std::uint32_t>(48, s.width);
     std::uint32_t rows = std::min<std::uint32_t>(36, s.height);
     std::vector<float> widths;

@@ -129,6 +129,15 @@ FrameParams makeFrameParams(const Scene& scene, const CameraDesc& camera, const 
     return p;
 }
 
+Bindings hostSceneBindings(const Scene& scene, const CameraDesc& camera, const RenderSettings& settings) {
+    RenderSettings s = settings;
+    s.pixelCenter = true;
+    Bindings bindings{};
+    bindings.params = makeFrameParams(scene, camera, s, PhotonBudget{}, 0, 0, FrameRadii{});
+    bindSceneArrays(bindings, scene);
+    return bindings;
+}
+
 void splitPaths(FrameParams& params, const PathSplit& split) {
     std::uint64_t count = params.pathCount;
     std::uint64_t first = count * split.rank / split.ranks;

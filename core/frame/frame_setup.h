@@ -8,6 +8,7 @@
 
 #include "core/scene/scene.h"
 #include "core/settings/settings.h"
+#include "shared/bindings.h"
 #include "shared/layout.h"
 
 namespace photon {
@@ -67,6 +68,10 @@ struct PathSplit {
 FrameParams makeFrameParams(const Scene& scene, const CameraDesc& camera, const RenderSettings& settings,
                             const PhotonBudget& budget, std::uint32_t frameIndex, std::uint32_t accumulated,
                             const FrameRadii& radii, const PathSplit& split = {});
+
+// The scene's arrays and a frame's parameters without photon maps, each pixel's ray through its
+// centre: for tracing the scene on the host with the shared code (footprints, the glass region).
+Bindings hostSceneBindings(const Scene& scene, const CameraDesc& camera, const RenderSettings& settings);
 
 // Narrows the parameters' paths (pathFirst, pathCount) to `split`'s rank's consecutive part of
 // them: a process's share of a frame, then each of its devices' share of that.

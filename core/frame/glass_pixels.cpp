@@ -1,17 +1,13 @@
 #include "core/frame/glass_pixels.h"
 
-#include "core/frame/estimator_policy.h"
+#include "core/frame/frame_setup.h"
 #include "shared/eye_trace.h"
 
 namespace photon {
 
 std::vector<bool> glassPixels(const Scene& scene, const CameraDesc& camera, const RenderSettings& settings) {
-    RenderSettings s = settings;
-    s.pixelCenter = true;
-    PhotonBudget budget;
-    Bindings bindings{};
-    bindings.params = makeFrameParams(scene, camera, s, budget, 0, 0, FrameRadii{});
-    bindSceneArrays(bindings, scene);
+    const RenderSettings& s = settings;
+    Bindings bindings = hostSceneBindings(scene, camera, settings);
     std::vector<bool> glass(std::size_t(s.width) * s.height, false);
     for (std::uint32_t pixel = 0; pixel < glass.size(); ++pixel) {
         Rng unused = rngCreate(pixel, 0u, 0u, STREAM_CAMERA);
