@@ -33,6 +33,7 @@
 #include "../shared/reproject.h"
 #include "../shared/rng.h"
 #include "../shared/sampling.h"
+#include "../shared/specular_split.h"
 #include "../shared/spectral.h"
 #include "../shared/sppm.h"
 #include "../shared/stages.h"
