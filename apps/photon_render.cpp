@@ -73,8 +73,9 @@ int writeResult(const RenderResult& result, const RenderSettings& settings, cons
                 std::vector<std::string> warnings, nlohmann::json stats) {
     const std::string& output = out.image;
     const std::string& statsPath = out.stats;
-    // Interrupted: what was rendered is written as it would have been at the end.
-    int interrupted = interruptSignal();
+    // Interrupted (here, or in another process of an MPI render: the signal it got): what was
+    // rendered is written as it would have been at the end.
+    int interrupted = result.cancelled;
     const Image& image = result.image;
     std::uint32_t frames = static_cast<std::uint32_t>(result.times.size());
     double wall = result.seconds;
@@ -105,8 +106,9 @@ int writeResult(const RenderResult& result, const RenderSettings& settings, cons
         writeOutputFile(statsPath, stats.dump(2) + "\n", "stats");
     }
     if (interrupted != 0) {
-        std::fprintf(stderr, "photon-render: %s: stopped after %u frame%s; the image so far is in %s%s%s\n",
-                     interrupted == SIGINT ? "interrupted" : "terminated", frames, frames == 1 ? "" : "s",
+        std::fprintf(stderr, "photon-render: %s%s: stopped after %u frame%s; the image so far is in %s%s%s\n",
+                     interrupted == SIGINT ? "interrupted" : "terminated",
+                     interruptSignal() == 0 ? " (in another process)" : "", frames, frames == 1 ? "" : "s",
                      printable(output).c_str(), statsPath.empty() ? "" : ", the stats in ", printable(statsPath).c_str());
         return 128 + interrupted;
     }
@@ -192,7 +194,7 @@ int run(int argc, char** argv) {
     nlohmann::json stats;
     RenderObserver observer;
     observer.frame = [&](std::uint32_t frames, double elapsed) { progress.update(frames, elapsed); };
-    observer.cancel = [] { return interruptSignal() != 0; };
+    observer.cancel = [] { return interruptSignal(); };
     observer.finished = [&](Renderer& backend) {
         progress.finish();
         if (!statsPath.empty()) {
@@ -201,7 +203,7 @@ int run(int argc, char** argv) {
     };
     RenderResult result = render(std::move(scene), settings, job, observer);
     if (!result.leader) {
-        return interruptSignal() != 0 ? 128 + interruptSignal() : 0;
+        return result.cancelled != 0 ? 128 + result.cancelled : 0;
     }
     return writeResult(result, settings, out, warnings, std::move(stats));
 }

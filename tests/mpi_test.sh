@@ -29,5 +29,42 @@ done
 cd "$tmp" && timeout 120 "$mpirun" --bind-to none -np 2 "$render" "${args[@]:0:7}" --backend cpu --time 0.5 -q -o "$tmp/timed.png" \
   || fail "a timed render over MPI did not end (exit $?)"
 [ -s "$tmp/timed.png" ] || fail "the timed render wrote no image"
+# Processes that disagree are refused before any frame, each naming what differs (issue 57).
+small=(--backend cpu --width 32 --height 24 --photons 5000 --frames 2 -q)
+check_refused() {  # <what the line must name> <mpirun's argument list...>
+  local want=$1; shift
+  cd "$tmp" && timeout 120 "$mpirun" --bind-to none "$@" > "$tmp/refused.log" 2>&1
+  local code=$?
+  [ "$code" -eq 2 ] || fail "processes that disagree ($want) exited $code, not 2"
+  grep -q -- "$want" "$tmp/refused.log" && echo "ok: refused, naming $want" || { fail "the refusal does not name $want"; cat "$tmp/refused.log"; }
+}
+check_refused "the scene's" -np 1 "$render" "$scenes/cornell.json" "${small[@]}" -o "$tmp/d.pfm" : -np 1 "$render" "$scenes/caustic.json" "${small[@]}" -o "$tmp/d.pfm"
+check_refused "--seed differs" -np 1 "$render" "$scenes/cornell.json" "${small[@]}" -o "$tmp/d.pfm" : -np 1 "$render" "$scenes/cornell.json" "${small[@]}" --seed 9 -o "$tmp/d.pfm"
+check_refused "--frames differs" -np 1 "$render" "$scenes/cornell.json" "${small[@]}" -o "$tmp/d.pfm" : -np 1 "$render" "$scenes/cornell.json" "${small[@]}" --frames 3 -o "$tmp/d.pfm"
+# A signal to a process other than the first stops every process after the same frame; the
+# first writes the image so far and all exit 128 + the signal.
+for sig in TERM INT; do
+  rm -f "$tmp/signalled.pfm"
+  cd "$tmp" && timeout 120 "$mpirun" --bind-to none -np 2 "$render" "$scenes/cornell.json" --backend cpu --width 32 --height 24 \
+    --photons 5000 --frames 1000000 -o "$tmp/signalled.pfm" > "$tmp/signal.log" 2>&1 &
+  launcher=$!
+  second=""
+  for _ in $(seq 100); do  # the process of rank 1, once it runs
+    for pid in $(pgrep -f -- "^$render .*signalled.pfm"); do
+      tr '\0' '\n' < "/proc/$pid/environ" 2>/dev/null | grep -qx "OMPI_COMM_WORLD_RANK=1" && second=$pid
+    done
+    [ -n "$second" ] && break
+    sleep 0.1
+  done
+  sleep 1
+  kill -"$sig" "$second"
+  wait "$launcher"
+  code=$?
+  want=$([ "$sig" = TERM ] && echo 143 || echo 130)
+  [ "$code" -eq "$want" ] && echo "ok: SIG$sig to the second process: mpirun exited $code" \
+    || { fail "SIG$sig to the second process: mpirun exited $code, not $want"; cat "$tmp/signal.log"; }
+  [ -s "$tmp/signalled.pfm" ] || fail "SIG$sig to the second process: no image so far"
+  grep -q "in another process" "$tmp/signal.log" || fail "SIG$sig: the first process did not say another stopped it"
+done
 [ "$failures" -eq 0 ] && echo "all MPI checks passed"
 exit "$failures"

@@ -19,8 +19,14 @@
 #include <vector>
 
 #include "core/frame/device.h"
+#include "core/frame/fingerprint.h"
 
 namespace photon {
+
+struct StopVote {
+    int request = 0;    // the largest stop request of any process (0: none)
+    bool stop = false;  // stop after this frame
+};
 
 struct Exchange {
     std::uint64_t bytes = 0;  // moved between devices this frame
@@ -48,8 +54,17 @@ public:
     // After the leader ran the rest of the frame: its times and counters, in every process.
     virtual void shareResult(FrameResult& result) { (void)result; }
 
-    // The leader's answer, in every process, to what each asks after a frame (stop here?).
-    virtual bool agree(bool leaderAnswer) { return leaderAnswer; }
+    // Before the first frame: every process must render the same scene with the same settings
+    // (core/frame/fingerprint.h). Throws InputError in every process, naming the first process
+    // and item that differ from the leader's; one process alone has nothing to compare.
+    virtual void checkSameInputs(const std::vector<Fingerprint>& mine) { (void)mine; }
+
+    // After each frame, in every process alike: whether to stop. `request` is this process's stop
+    // request (0: none; else its reason, such as a signal's number) and `leaderDone` whether the
+    // leader's render is over (its time is spent); only the leader's counts, so that the processes
+    // stop after the same frame. Any process's request stops them all, and each learns the
+    // largest request.
+    virtual StopVote agreeToStop(int request, bool leaderDone) { return {request, request != 0 || leaderDone}; }
 };
 
 // The devices of one process, through host memory.

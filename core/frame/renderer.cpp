@@ -118,6 +118,9 @@ void Renderer::prepare() {
         throw InputError("the scene has no lights");
     }
     validateSettings(settings_);
+    if (collective_->processes() > 1) {
+        collective_->checkSameInputs(renderFingerprints(scene_, camera_, settings_));
+    }
     measureRadii();
     PhotonBudget budget = planPhotons(scene_, settings_);
     for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {

@@ -102,9 +102,9 @@ public:
     // the others' image(), rawImage() and readbacks throw std::logic_error.
     std::uint32_t processes() const { return collective_->processes(); }
     bool leads() const { return collective_->leads(); }
-    // The leader's answer in every process (whether to stop after this frame): several processes
-    // render the same frames.
-    bool agree(bool leaderAnswer) { return collective_->agree(leaderAnswer); }
+    // Whether to stop after this frame, the same in every process (Collective::agreeToStop):
+    // several processes render the same frames.
+    StopVote agreeToStop(int request, bool leaderDone) { return collective_->agreeToStop(request, leaderDone); }
 
     // Changing any of these restarts accumulation; uploads and allocations happen in prepare().
     void setScene(Scene scene);  // moved in: a large scene is not copied again

@@ -147,10 +147,64 @@ public:
         waitIdly(requests[1], "frame times");
     }
 
-    bool agree(bool leaderAnswer) override {
-        int answer = leaderAnswer ? 1 : 0;
-        check(MPI_Bcast(&answer, 1, MPI_INT, 0, MPI_COMM_WORLD), "agreement");
-        return answer != 0;
+    // The leader gathers every process's hashes, finds the first process and item that differ and
+    // tells all, so that every process refuses with the same line before any frame.
+    void checkSameInputs(const std::vector<Fingerprint>& mine) override {
+        std::vector<std::uint64_t> hashes;
+        for (const Fingerprint& f : mine) {
+            hashes.push_back(f.hash);
+        }
+        int count = static_cast<int>(hashes.size());
+        std::vector<int> counts(size_), offsets(size_);
+        check(MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD), "input counts");
+        std::vector<std::uint64_t> all;
+        if (leads()) {
+            int total = 0;
+            for (std::uint32_t r = 0; r < size_; ++r) {
+                offsets[r] = total;
+                total += counts[r];
+            }
+            all.resize(std::size_t(total));
+        }
+        check(MPI_Gatherv(hashes.data(), count, MPI_UINT64_T, all.data(), counts.data(), offsets.data(), MPI_UINT64_T, 0,
+                          MPI_COMM_WORLD),
+              "input hashes");
+        int verdict[2] = {-1, -1};  // the first process that differs, and the item (-1: its build's items)
+        for (std::uint32_t r = 1; leads() && r < size_ && verdict[0] < 0; ++r) {
+            if (counts[r] != count) {
+                verdict[0] = int(r);
+                break;
+            }
+            for (int i = 0; i < count; ++i) {
+                if (all[std::size_t(offsets[r] + i)] != hashes[std::size_t(i)]) {
+                    verdict[0] = int(r), verdict[1] = i;
+                    break;
+                }
+            }
+        }
+        check(MPI_Bcast(verdict, 2, MPI_INT, 0, MPI_COMM_WORLD), "input verdict");
+        if (verdict[0] < 0) {
+            return;
+        }
+        std::string who = "MPI process " + std::to_string(verdict[0]) + " of " + std::to_string(size_);
+        if (verdict[1] < 0) {
+            throw InputError(who + " runs another build of Photon than process 0 (its inputs are other items)");
+        }
+        const std::string& item = mine[std::size_t(verdict[1])].name;
+        bool arrays = item.rfind("the scene's", 0) == 0;
+        bool scene = item.rfind("the ", 0) == 0;  // the scene's arrays or the camera; else a setting's flag
+        throw InputError(who + ": " + item + (arrays ? " differ" : " differs") + " from process 0's" +
+                         (scene ? " (another scene file, or a stale copy of it or its models on that host?)"
+                         : item == "--photons" ? " (where no photon count is given, each process's device chooses one: give it)"
+                                               : " (give every process the same settings)"));
+    }
+
+    // One reduction: the largest request of any process, and the leader's end (the others send 0).
+    StopVote agreeToStop(int request, bool leaderDone) override {
+        int mine[2] = {request, leads() && leaderDone ? 1 : 0};
+        int all[2] = {};
+        check(MPI_Allreduce(mine, all, 2, MPI_INT, MPI_MAX, MPI_COMM_WORLD), "stop vote");
+        return {all[0], all[0] != 0 || all[1] != 0};
     }
 
 private:

@@ -29,11 +29,12 @@ RenderResult render(Scene scene, RenderSettings settings, const RenderJob& job, 
         if (observer.frame) {
             observer.frame(f + 1, seconds);
         }
-        // Processes rendering together stop after the same frame: the leader's.
-        bool cancelled = observer.cancel && observer.cancel();
-        bool stop = renderer->agree(cancelled || (timed && seconds >= job.seconds));
-        if (stop) {
-            result.cancelled = renderer->agree(cancelled);
+        // Processes rendering together stop after the same frame: when any asks, or the leader's
+        // time is spent.
+        int request = observer.cancel ? observer.cancel() : 0;
+        StopVote vote = renderer->agreeToStop(request, timed && seconds >= job.seconds);
+        if (vote.stop) {
+            result.cancelled = vote.request;
             break;
         }
     }

@@ -28,12 +28,13 @@ struct RenderJob {
 };
 
 // Called on the rendering thread. `frame` after each frame (frames done, seconds since the start);
-// `cancel` after each frame: true stops the render, which still returns the image so far.
+// `cancel` after each frame: nonzero (a reason: a signal's number, or 1) stops the render, which
+// still returns the image so far; under MPI any process's request stops every process.
 // `finished` sees the renderer once the last frame is done, before its images are read back (the
 // photon maps, the frame parameters: what a statistics file reports).
 struct RenderObserver {
     std::function<void(std::uint32_t frames, double seconds)> frame;
-    std::function<bool()> cancel;
+    std::function<int()> cancel;
     std::function<void(Renderer& renderer)> finished;
 };
 
@@ -44,7 +45,7 @@ struct RenderResult {
     std::vector<StageTimes> times;  // each frame's stage times
     FrameStats last;                // the last frame's counts and times
     double seconds = 0.0;           // wall time from the device's creation to the image
-    bool cancelled = false;
+    int cancelled = 0;              // the largest stop request of any process (0: rendered to the end)
     std::uint32_t processes = 1;    // rendering together (MPI)
     bool leader = true;             // false in the processes of an MPI render but the first: no
                                     // images (and `finished` is not called)
