@@ -90,11 +90,8 @@ int writeResult(const RenderResult& result, const RenderSettings& settings, cons
         }
     }
     // A black image with exit 0 looks like a bug; say so, with the likely reasons.
-    if (double lit = litFraction(image, settings.exposure); lit < kNearBlackFraction && interrupted == 0) {
-        char share[32];
-        std::snprintf(share, sizeof share, "%.1f%%", 100.0 * lit);
-        warnings.push_back(out.source + ": the image is nearly black: " + share + " of its pixels show (at --exposure " +
-                           formatNumber(settings.exposure) + "); do the lights reach what the camera sees?");
+    if (std::string black = nearlyBlackWarning(image, settings.exposure, out.source); !black.empty() && interrupted == 0) {
+        warnings.push_back(black);
         warn(out, warnings.back());
     }
     writeImage(output, image, settings.exposure, settings.tonemap, layers);

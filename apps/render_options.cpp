@@ -9,9 +9,6 @@
 #include "core/system/program.h"
 
 namespace photon {
-namespace {
-const Range kEnvironmentIntensity{0.0, 1e12};
-}  // namespace
 
 std::vector<std::string> splitList(const std::string& text) {
     std::vector<std::string> out;
@@ -67,20 +64,10 @@ void applyEnvironmentOption(const CLI::App& app, const RenderOptions& o, Scene& 
     if (app.count("--environment") == 0) {
         return;
     }
-    EnvironmentLight env;
-    env.source = o.environment;
-    try {
-        env.map = loadEnvironmentMap(o.environment);
-    } catch (const InputError& e) {
-        throw InputError(std::string("--environment: ") + e.what());
-    }
     float intensity = app.count("--environment-intensity") > 0
                           ? parseNumber(o.environmentIntensity, kEnvironmentIntensity, "--environment-intensity")
                           : 1.0f;
-    env.radiance = glm::vec3(intensity);
-    env.lights = true;
-    scene.setEnvironment(std::move(env));
-    scene.finalize();
+    lightWithEnvironmentMap(scene, o.environment, intensity, "--environment");
 }
 
 void applyRenderOptions(const CLI::App& app, const RenderOptions& o, RenderSettings& settings) {

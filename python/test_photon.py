@@ -54,13 +54,18 @@ def test_a_dict_and_json_text_equal_the_file():
     [
         (CORNELL, dict(photons=-1), "photons: must be"),
         (CORNELL, dict(estimator="nearest"), "estimator: unknown value"),
-        (CORNELL, dict(colour=3), "colour: no such setting"),
+        (CORNELL, dict(colour=3), "colour: no such keyword"),
+        (CORNELL, dict(width=0), "width: must be"),  # the keyword, not the CLI's --width
+        (CORNELL, dict(environment_intensity=2), "environment_intensity: only with environment"),
+        ({"render": {"photons": float("nan")}}, {}, "<dict>/render/photons: not a finite number"),
+        ({"render": {"photons": {1, 2}}}, {}, "<dict>/render/photons: a set is no JSON value"),
+        ("scenes/cornell.json\0.txt", {}, "scene: the path holds a NUL character"),
         (CORNELL, dict(backend="quantum"), "unknown backend 'quantum'"),
         (CORNELL, dict(time="soon"), "time: must be a number"),
         ("no/such/scene.json", {}, "no/such/scene.json: cannot open"),
         ({"camera": {}}, {}, "<dict>: /camera"),
         ("{ not json", {}, "<json>: line 1"),
-        (42, {}, "scene: expected a path, JSON text or a dict"),
+        (42, {}, "scene: expected a path, JSON text, a dict or None"),
     ],
 )
 def test_bad_input_raises_value_error_with_the_cli_message(scene, kwargs, message):
@@ -181,6 +186,116 @@ def test_write_image_writes_what_photon_render_reads(tmp_path):
     assert not (tmp_path / "nan.pfm").exists()
     with pytest.raises(ValueError, match=r"shape \(height, width, 3\)"):
         photon.write_image(str(tmp_path / "flat.pfm"), np.zeros((4, 4), np.float32))
+
+
+def test_write_image_refuses_what_it_would_write_wrongly(tmp_path):
+    rgb = np.ones((4, 4, 3), np.float32)
+    for image, message in [(np.ones((4, 4, 3), np.uint8), "floats, linear radiance .got uint8"),
+                           (np.ones((4, 4, 3), complex), "got complex128"),
+                           (np.ones((4, 4, 4), np.float32), "got 4 channels"),
+                           (np.ones((4, 4, 3), np.float16), None)]:
+        if message is None:
+            photon.write_image(str(tmp_path / "half.pfm"), image)  # floats of any width
+        else:
+            with pytest.raises(ValueError, match=message):
+                photon.write_image(str(tmp_path / "x.png"), image)
+    for exposure in (float("nan"), float("inf"), -1e9):
+        with pytest.raises(ValueError, match="exposure: must be"):
+            photon.write_image(str(tmp_path / "x.png"), rgb, exposure)
+    with pytest.raises(ValueError, match="NUL"):
+        photon.write_image(str(tmp_path / "x\0.png"), rgb)
+    assert not (tmp_path / "x.png").exists()
+
+
+def test_a_renderer_shared_by_threads_takes_turns():
+    import threading
+    renderer = photon.Renderer(CORNELL, **dict(SMALL, aov=True))
+    errors = []
+
+    def steps():
+        try:
+            for _ in range(12):
+                renderer.step(1)
+        except Exception as error:  # noqa: BLE001: any error fails the test below
+            errors.append(error)
+
+    worker = threading.Thread(target=steps)
+    worker.start()
+    reads = 0
+    while worker.is_alive() or reads == 0:
+        assert renderer.image().shape == (36, 48, 3)
+        assert renderer.aovs()["albedo"].shape == (36, 48, 3)
+        renderer.stats()
+        reads += 1
+    worker.join()
+    assert not errors and renderer.stats()["frames"] == 12
+    # Steps from two threads at once: every frame counted once.
+    workers = [threading.Thread(target=lambda: renderer.step(3)) for _ in range(2)]
+    for w in workers:
+        w.start()
+    for w in workers:
+        w.join()
+    assert renderer.stats()["frames"] == 18
+
+
+def test_a_renderer_converges_unless_told_otherwise():
+    settings = {k: v for k, v in SMALL.items() if k != "frames"}
+    plain, sppm, radius = (photon.Renderer(CORNELL, **dict(settings, **extra))
+                           for extra in ({}, dict(estimator="sppm"), dict(estimator="radius")))
+    for r in (plain, sppm, radius):
+        r.step(3)
+    assert np.array_equal(plain.image(), sppm.image()), "a stepped renderer takes sppm"
+    assert not np.array_equal(plain.image(), radius.image())
+    with pytest.raises(ValueError, match="time: a Renderer renders the frames step"):
+        photon.Renderer(CORNELL, time=1)
+
+
+def test_keywords_the_cli_has(tmp_path):
+    # The flag's name as well as the scene-file key; environment maps; the built-in scene.
+    assert np.array_equal(photon.render(CORNELL, **dict(SMALL, max_depth=3)),
+                          photon.render(CORNELL, **dict(SMALL, max_eye_depth=3)))
+    sky = tmp_path / "sky.exr"
+    photon.write_image(str(sky), np.full((8, 16, 3), 0.5, np.float32))
+    lit = photon.render(CORNELL, **dict(SMALL, environment=sky))
+    brighter = photon.render(CORNELL, **dict(SMALL, environment=str(sky), environment_intensity=4))
+    assert brighter.mean() > lit.mean() > 0
+    out = tmp_path / "builtin.pfm"
+    args = [os.environ["PHOTON_RENDER"], "-q", "-o", str(out)]
+    for key, value in SMALL.items():
+        args += ["--" + key] if value is True else ["--" + key, str(value)]
+    subprocess.run(args, check=True)
+    assert np.array_equal(photon.render(None, **SMALL), read_pfm(out)), "None: the built-in Cornell box"
+    assert photon.__version__.count(".") == 2
+
+
+def test_numpy_values_in_a_dict_scene():
+    with open(CORNELL) as f:
+        scene = json.load(f)
+    scene["camera"]["fov"] = np.float32(scene["camera"]["fov"])
+    scene["camera"]["position"] = np.array(scene["camera"]["position"], np.float64)
+    assert np.array_equal(photon.render(scene, **SMALL), photon.render(CORNELL, **SMALL))
+
+
+def test_what_the_loaders_notice_comes_as_warnings(tmp_path):
+    model = tmp_path / "sliver.obj"
+    model.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\n")  # the second has no area
+    with pytest.warns(UserWarning, match="dropped"):
+        photon.render(str(model), **SMALL)
+    with pytest.warns(UserWarning, match="nearly black"):
+        photon.render(CORNELL, **dict(SMALL, exposure=-40))
+
+
+def test_progress_numpy_false_cancels_and_ctrl_c_keeps_the_image():
+    settings = dict(SMALL, frames=1000)
+    calls = []
+    photon.render(CORNELL, progress=lambda done, s: calls.append(done) or np.bool_(done < 2), **settings)
+    assert calls == [1, 2]
+    interrupt = lambda done, s: os.kill(os.getpid(), signal.SIGINT) if done == 2 else None
+    with pytest.raises(KeyboardInterrupt) as stopped:
+        photon.render(CORNELL, progress=interrupt, **settings)
+    two = photon.Renderer(CORNELL, **settings)
+    two.step(2)
+    assert np.array_equal(stopped.value.image, two.image()), "the interrupted render's frames, on the exception"
 
 
 def test_devices_lists_the_cpu():

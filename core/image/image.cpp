@@ -13,6 +13,7 @@
 #include "core/image/exr_writer.h"
 #include "core/image/png_writer.h"
 #include "core/system/error.h"
+#include "core/system/numbers.h"
 #include "core/system/output_file.h"
 
 namespace photon {
@@ -198,6 +199,17 @@ double litFraction(const Image& image, float exposure) {
     auto lit = std::count_if(image.pixels.begin(), image.pixels.end(),
                              [&](const glm::vec4& p) { return std::max({p.x, p.y, p.z}) >= threshold; });
     return image.pixels.empty() ? 0.0 : double(lit) / double(image.pixels.size());
+}
+
+std::string nearlyBlackWarning(const Image& image, float exposure, const std::string& source) {
+    double lit = litFraction(image, exposure);
+    if (lit >= kNearBlackFraction) {
+        return "";
+    }
+    char share[32];
+    std::snprintf(share, sizeof share, "%.1f%%", 100.0 * lit);
+    return source + ": the image is nearly black: " + share + " of its pixels show (at --exposure " + formatNumber(exposure) +
+           "); do the lights reach what the camera sees?";
 }
 
 bool allFinite(const Image& image) {

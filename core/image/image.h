@@ -61,6 +61,9 @@ bool allFinite(const Image& image);
 inline constexpr float kLitRadiance = 0.01f;
 inline constexpr double kNearBlackFraction = 0.1;
 double litFraction(const Image& image, float exposure);
+// "<source>: the image is nearly black: 2.1% of its pixels show (at --exposure 0); do the lights
+// reach what the camera sees?", or empty where the image shows.
+std::string nearlyBlackWarning(const Image& image, float exposure, const std::string& source);
 // |a - b| scaled so that the largest difference is 1, for looking at.
 Image differenceImage(const Image& a, const Image& b);
 

@@ -372,4 +372,18 @@ EnvironmentMap decodeEnvironmentMap(const std::string& bytes, const std::string&
     return map;
 }
 
+void lightWithEnvironmentMap(Scene& scene, const std::string& path, float intensity, const std::string& where) {
+    EnvironmentLight env;
+    env.source = path;
+    try {
+        env.map = loadEnvironmentMap(path);
+    } catch (const InputError& e) {
+        throw InputError(where + ": " + e.what());
+    }
+    env.radiance = glm::vec3(intensity);
+    env.lights = true;
+    scene.setEnvironment(std::move(env));
+    scene.finalize();
+}
+
 }  // namespace photon

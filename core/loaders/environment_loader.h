@@ -10,6 +10,8 @@
 #include <string>
 
 #include "core/scene/environment.h"
+#include "core/scene/scene.h"
+#include "core/system/numbers.h"
 
 namespace photon {
 
@@ -23,6 +25,13 @@ inline constexpr std::uint64_t kEnvironmentFileLimit = std::uint64_t(3) << 30;
 // outside 1×1 … kEnvironmentWidthMax × kEnvironmentHeightMax, is truncated or corrupt, or holds a
 // texel that is not finite or is negative (radiance is neither).
 EnvironmentMap loadEnvironmentMap(const std::string& path);
+
+// What photon-render's --environment-intensity and Python's environment_intensity accept.
+inline constexpr Range kEnvironmentIntensity{0.0, 1e12};
+
+// Lights `scene` with the map at `path` (replacing its environment or background, finalizing the
+// scene again), its texels times `intensity`; a refusal names `where` (an option or keyword).
+void lightWithEnvironmentMap(Scene& scene, const std::string& path, float intensity, const std::string& where);
 
 // The same from the file's bytes (read by the caller: a scene's FileReader), `path` naming it.
 EnvironmentMap decodeEnvironmentMap(const std::string& bytes, const std::string& path);
