@@ -9,6 +9,7 @@
 #include <limits>
 #include <string>
 
+#include "core/frame/scene_settings.h"
 #include "core/render/devices.h"
 #include "backend_compare.h"
 #include "core/image/image_error.h"
@@ -156,6 +157,40 @@ TEST(AutomaticRadius, FollowsThePixelFootprint) {
     s.radius = 0.07f;
     EXPECT_FLOAT_EQ(firstFrameRadii(scene, s, measureFootprints(scene, scene.camera, s), planPhotons(scene, s)).radius[MAP_GLOBAL], 0.07f)
         << "a given radius overrides";
+}
+
+// On a bounded grid an automatic radius stays within the cells its query reaches, for every
+// estimator and map (issue 57: sppm's small, low-photon renders were refused, blaming the
+// automatic radius); a given one too large is refused by its flag.
+TEST(AutomaticRadius, StaysWithinTheBoundedGrid) {
+    for (const char* file : {"cornell.json", "fog.json"}) {
+        Scene scene = loadSceneFile(std::string(PHOTON_SCENES_DIR) + "/" + file);
+        for (Estimator e : {Estimator::Sppm, Estimator::Radius, Estimator::Progressive, Estimator::Knn}) {
+            RenderSettings s = test::sizedSettings(scene.render, 64, 48, 5000);
+            s.estimator = e;
+            s.grid = GridKind::Bounded;
+            glm::vec3 extent = scene.boundsMax - scene.boundsMin;
+            float cell = std::max({extent.x, extent.y, extent.z}) / float(s.gridResolution);
+            FrameRadii r = firstFrameRadii(scene, s, measureFootprints(scene, scene.camera, s), planPhotons(scene, s));
+            for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
+                EXPECT_LE(r.radius[m], boundedGridReachCells(m) * cell * 1.000001f) << file << " map " << m;
+                EXPECT_GT(r.radius[m], 0.0f);
+            }
+            EXPECT_NO_THROW(validateForScene(s, scene, r)) << file;
+            EXPECT_TRUE(allFinite(test::renderOnCpu(scene, s, 2))) << file;
+        }
+    }
+    Scene scene = defaultScene();
+    RenderSettings s = test::sizedSettings(scene.render, 64, 48, 5000);
+    s.grid = GridKind::Bounded;
+    s.radius = 1.0f;
+    auto backend = createRenderer("cpu");
+    try {
+        test::renderFrames(*backend, scene, s, 1);
+        ADD_FAILURE() << "a given radius of 1 on 64 cells of a 2-unit box";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("--radius 1: too large for the bounded grid"), std::string::npos) << e.what();
+    }
 }
 
 // The cells of the next frame follow the largest radius too, not only the median, whose histogram

@@ -59,6 +59,22 @@ float firstBeamRadius(const Scene& scene, const RenderSettings& settings, const 
     return r;
 }
 
+// An automatic radius stays within what the bounded grid's query reaches (boundedGridReachCells;
+// a given one is refused by validateForScene instead). sppm's pixels start within it and only
+// shrink, so its later frames stay within it too.
+void clampToBoundedGrid(FrameRadii& r, const Scene& scene, const RenderSettings& settings) {
+    if (settings.grid != GridKind::Bounded) {
+        return;
+    }
+    glm::vec3 extent = scene.boundsMax - scene.boundsMin;
+    float cell = std::max({extent.x, extent.y, extent.z}) / float(settings.gridResolution);
+    for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
+        if (mapRadius(settings, m) <= 0.0f) {
+            r.radius[m] = std::min(r.radius[m], boundedGridReachCells(m) * cell);
+        }
+    }
+}
+
 }  // namespace
 
 FrameRadii firstFrameRadii(const Scene& scene, const RenderSettings& settings, const Footprints& footprints,
@@ -90,6 +106,7 @@ FrameRadii firstFrameRadii(const Scene& scene, const RenderSettings& settings, c
             r.radius[m] = given > 0.0f ? given : footprints.any ? footprints.median * r.sppm[m].firstFootprints : unseen;
         }
         r.radius[MAP_VOLUME] = firstBeamRadius(scene, settings, footprints, fallback);
+        clampToBoundedGrid(r, scene, settings);
         return r;
     }
     for (std::uint32_t m = 0; m < SURFACE_MAP_COUNT; ++m) {
@@ -98,18 +115,8 @@ FrameRadii firstFrameRadii(const Scene& scene, const RenderSettings& settings, c
         float unseen = m == MAP_GLOBAL ? fallback : kFallbackShare[m] * r.radius[MAP_GLOBAL];
         r.radius[m] = given > 0.0f ? given : footprints.any ? kAutoRadiusFootprints[m] * footprints.median : unseen;
     }
-    if (settings.grid == GridKind::Bounded) {
-        // An automatic radius stays within what the bounded grid's query reaches (a given one is
-        // refused by validateForScene instead).
-        glm::vec3 extent = scene.boundsMax - scene.boundsMin;
-        float cell = std::max({extent.x, extent.y, extent.z}) / float(settings.gridResolution);
-        for (std::uint32_t m = 0; m < MAP_COUNT; ++m) {
-            if (mapRadius(settings, m) <= 0.0f) {
-                r.radius[m] = std::min(r.radius[m], kBoundedGridReachCells * cell);
-            }
-        }
-    }
     r.radius[MAP_VOLUME] = firstBeamRadius(scene, settings, footprints, fallback);
+    clampToBoundedGrid(r, scene, settings);
     return r;
 }
 

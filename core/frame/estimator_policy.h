@@ -14,8 +14,10 @@
 
 namespace photon {
 
-// A bounded grid's query reaches this many cells from its centre (validateForScene).
+// A bounded grid's query reaches this many cells from its centre (validateForScene); the beam
+// estimate of the volume map one cell from the cells a ray crosses.
 inline constexpr float kBoundedGridReachCells = 6.0f;
+inline constexpr float boundedGridReachCells(std::uint32_t map) { return map == MAP_VOLUME ? 1.0f : kBoundedGridReachCells; }
 
 // A frame's radii: the query radius of each map (GridParams.radius; sppm: the radius the grid's
 // cells follow) and sppm's per-map parameters (FrameParams.sppm).

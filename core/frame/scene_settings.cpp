@@ -40,10 +40,8 @@ void validateForScene(const RenderSettings& settings, const Scene& scene, const 
                      " (Photon renders scenes up to " + formatNumber(kMaxSceneSpan) + " wide)");
         }
         if (settings.grid == GridKind::Bounded) {
-            // A bounded grid's query reaches kBoundedGridReachCells cells from its centre; the
-            // beam estimate one cell from the cells a ray crosses.
             double cell = size / double(settings.gridResolution);
-            double reach = map == MAP_VOLUME ? 1.0 : double(kBoundedGridReachCells);
+            double reach = boundedGridReachCells(map);
             if (r > reach * cell * (1.0 + 1e-6)) {
                 sceneFail(what, "too large for the bounded grid, whose cells are " + formatNumber(cell) + " wide: at most " +
                                formatNumber(reach) +
