@@ -41,9 +41,10 @@ expect() {
 
 # 1. Inputs that crashed the bounded grid.
 expect 2 "--radius" "$render" "${small[@]}" --grid bounded --radius 1e39 -o "$tmp/a.png"
-# A radius wider than the bounded grid reaches needs wider cells: fewer of them (the message said
-# to raise the resolution).
-expect 2 "lower --grid-resolution" "$render" "${small[@]}" --grid bounded --grid-resolution 1024 --frames 3 -o "$tmp/a.png"
+# A given radius wider than the bounded grid reaches needs wider cells: fewer of them (the message
+# said to raise the resolution); an automatic one is clamped to what the grid reaches.
+expect 2 "lower --grid-resolution" "$render" "${small[@]}" --grid bounded --grid-resolution 256 --radius 0.5 --frames 3 -o "$tmp/a.png"
+expect 0 "" "$render" "${small[@]}" --grid bounded --grid-resolution 256 --frames 3 -o "$tmp/a.png"
 expect 2 "--alpha" "$render" "${small[@]}" --grid bounded --alpha nan --estimator progressive --frames 3 -o "$tmp/a.png"
 python3 - "$scenes/cornell.json" "$tmp/far.json" <<'EOF'
 import json, sys
@@ -57,6 +58,9 @@ finite_pfm "$tmp/far.pfm" || fail "the far-sphere render is not finite"
 
 # 2. More memory than the process may have: refused before work, not a crash.
 expect 2 "lower the photons" bash -c "ulimit -v 2000000; exec \"$render\" --backend cpu --photons 50000000 --width 64 --height 48 -q -o \"$tmp/m.png\""
+# The images read back count too: at 2000x2000 the CPU's buffers (825 MiB) fit under 1.4 GB, the
+# auxiliary images' readback (580 MiB more) does not (issue 57: a bare "out of memory" after 6 s).
+expect 2 "auxiliary images need" bash -c "ulimit -v 1400000; exec \"$render\" --backend cpu --photons 5000 --frames 1 --width 2000 --height 2000 --aov --denoise off -q -o \"$tmp/m.exr\""
 
 # 3. Outputs appear whole or not at all.
 ln -s /dev/full "$tmp/full.png"

@@ -117,6 +117,10 @@ const char* whatToLower(std::uint32_t sizeClass) {
     throw std::logic_error("unknown buffer size class");
 }
 
+std::uint64_t hostBytesPerPixel(bool denoise, bool aov) {
+    return kHostBytesPerPixel + (denoise ? sizeof(glm::vec4) : 0u) + (aov ? sizeof(PixelAov) + 4 * sizeof(glm::vec4) : 0u);
+}
+
 std::uint64_t availableHostMemory() {
     std::uint64_t page = std::uint64_t(sysconf(_SC_PAGESIZE));
     std::uint64_t available = std::uint64_t(sysconf(_SC_PHYS_PAGES)) * page;

@@ -61,6 +61,9 @@ std::uint64_t availableHostMemory();
 
 // Host memory an image takes besides the backend's buffers: its readback and its encoding.
 inline constexpr std::uint64_t kHostBytesPerPixel = 24;
+// ... and a render's images together, a pixel: the image, the one before the denoiser beside it
+// (`denoise`), and with `aov` the auxiliary buffer's readback and its four images (aov_images.h).
+std::uint64_t hostBytesPerPixel(bool denoise, bool aov);
 
 // The setting that shrinks buffers of a BUFFER_PER_* class, for messages.
 const char* whatToLower(std::uint32_t sizeClass);

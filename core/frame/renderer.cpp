@@ -136,11 +136,18 @@ void Renderer::prepare() {
         checkMemory(plan, device->memoryLimits(), settings_.width, settings_.height);
         plans.push_back(plan);
     }
-    std::uint64_t hostImage = std::uint64_t(settings_.width) * settings_.height * kHostBytesPerPixel;
-    if (!buffersInHostMemory() && hostImage > availableHostMemory()) {
-        throw InputError("the image needs " + formatMiB(hostImage) + " of host memory at " + std::to_string(settings_.width) +
-                         "x" + std::to_string(settings_.height) + ", more than this machine has available; " +
-                         whatToLower(BUFFER_PER_PIXEL));
+    // The images read back to the host, and the buffers of devices that keep theirs there.
+    std::uint64_t hostImages = std::uint64_t(settings_.width) * settings_.height * hostBytesPerPixel(denoises(settings_), settings_.aov);
+    std::uint64_t hostBuffers = 0;
+    for (std::size_t d = 0; d < devices_.size(); ++d) {
+        hostBuffers += devices_[d]->buffersInHostMemory() ? plans[d].totalBytes() : 0;
+    }
+    if (std::uint64_t available = availableHostMemory(); hostImages + hostBuffers > available) {
+        throw InputError(std::string(settings_.aov ? "the image and its auxiliary images need " : "the image needs ") +
+                         formatMiB(hostImages) + " of host memory at " + std::to_string(settings_.width) + "x" +
+                         std::to_string(settings_.height) + (hostBuffers > 0 ? " besides the buffers' " + formatMiB(hostBuffers) : "") +
+                         ", more than the " + formatMiB(available) + " available; " +
+                         whatToLower(settings_.aov ? BUFFER_PER_AOV_PIXEL : BUFFER_PER_PIXEL));
     }
     if (sceneDirty_) {
         for (std::size_t d = 0; d < devices_.size(); ++d) {
