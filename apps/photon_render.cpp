@@ -168,7 +168,7 @@ int run(int argc, char** argv) {
     chooseSpectral(settings, scene);
     validateSettings(settings);
     // Outputs that cannot be written fail now, not after the render.
-    imageFormatFor(output);
+    ImageFormat format = imageFormatFor(output);
     checkOutputPath(output, "image");
     if (!statsPath.empty()) {
         checkOutputPath(statsPath, "stats");
@@ -179,6 +179,9 @@ int run(int argc, char** argv) {
     // Under mpirun every process renders its share; the first prints and writes.
     Outputs out{output, statsPath, source, quiet || launchedRank() != 0};
     std::vector<std::string> warnings = scene.warnings;
+    if (settings.aov && format != ImageFormat::Exr) {
+        warnings.push_back(output + ": only an .exr file holds the auxiliary images (--aov); this one gets the image alone");
+    }
     for (const std::string& warning : warnings) {
         warn(out, warning);
     }

@@ -175,6 +175,10 @@ expect 2 "far.json: /objects/0/file: $tmp/far.obj: the model's triangles are 1e+
 printf '{"camera": {"position": [0, 0, 0], "look_at": [0, 0, 1]}, "materials": {"grey": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5]}}, "lights": [{"type": "point", "position": [0, 0, -3], "power": 10}], "objects": [{"type": "sphere", "center": [0, 0, -4], "radius": 0.5, "material": "grey"}]}' > "$tmp/away.json"
 expect 0 "away.json: the image is nearly black: 0.0% of its pixels show" "$tmp/away.json" "${small[@]}" -o "$tmp/x.png" --stats "$tmp/away-stats.json"
 grep -q "nearly black" "$tmp/away-stats.json" || fail "the stats lack the warning"
+# --aov into a file that cannot hold the auxiliary images says so (issue 57); an EXR file does not.
+expect 0 "x.png: only an .exr file holds the auxiliary images" "${small[@]}" --aov -o "$tmp/x.png"
+expect 0 "" "${small[@]}" --aov -o "$tmp/x.exr"
+grep -q "auxiliary" "$tmp/err" && fail "an EXR output warned of auxiliary images"
 
 bench="$(dirname "$render")/photon-bench"
 "$bench" --resolutions 99999x99999 >"$tmp/out" 2>"$tmp/err"
