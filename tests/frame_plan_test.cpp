@@ -17,6 +17,7 @@
 #include "core/frame/photon_use.h"
 #include "core/loaders/scene_loader.h"
 #include "core/settings/setting_specs.h"
+#include "core/system/error.h"
 #include "core/render/devices.h"
 
 namespace photon {
@@ -104,6 +105,35 @@ TEST(BufferHelpers, SceneBuffersArePaddedToThePlan) {
 
 // Photons a frame follow the processor unless the file or the command line gives them: a GPU gets
 // kGpuDefaultPhotons, the host's cores one per kCpuPixelsPerPhoton pixels within their bounds.
+// A refusal names what shrinks the buffer: the media's density voxels by their grids' resolution,
+// not "simplify the scene" (issue 57: lavapipe and a 512³ grid).
+TEST(BufferHelpers, RefusalsNameWhatToLower) {
+    BufferPlan plan;
+    plan.elements[BINDING_PARAMS] = 1;
+    plan.elements[BINDING_DENSITIES] = std::uint64_t(512) * 512 * 512;
+    plan.elements[BINDING_TRIANGLES] = 1;
+    MemoryLimits limits{"llvmpipe", "device memory", std::uint64_t(1) << 40, std::uint64_t(128) << 20, "maxStorageBufferRange"};
+    auto messageOf = [&] {
+        try {
+            checkMemory(plan, limits, 64, 48);
+        } catch (const InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    EXPECT_NE(messageOf().find("buffer 'densities' needs 512.0 MiB"), std::string::npos) << messageOf();
+    EXPECT_NE(messageOf().find("lower the density grids' resolution"), std::string::npos) << messageOf();
+    plan.elements[BINDING_DENSITIES] = 1;
+    plan.elements[BINDING_TRIANGLES] = std::uint64_t(64) << 20;
+    EXPECT_NE(messageOf().find("simplify the scene"), std::string::npos) << messageOf();
+    limits.perBuffer = 0;
+    limits.total = std::uint64_t(1) << 30;
+    plan.elements[BINDING_TRIANGLES] = 1;
+    plan.elements[BINDING_DENSITIES] = std::uint64_t(1) << 30;
+    EXPECT_NE(messageOf().find("the largest is 'densities'"), std::string::npos) << messageOf();
+    EXPECT_NE(messageOf().find("lower the density grids' resolution"), std::string::npos) << messageOf();
+}
+
 TEST(DefaultPhotons, FollowTheProcessorUnlessGiven) {
     Scene scene = defaultScene();
     EXPECT_FALSE(isGiven(scene.render, "photons")) << "the shipped Cornell box leaves the count to the backend";

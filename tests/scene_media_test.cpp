@@ -2,10 +2,12 @@
 // grids from OpenVDB files, and one line for each mistake.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 
 #include "core/loaders/scene_loader.h"
 #include "core/system/error.h"
+#include "core/system/numbers.h"
 #include "test_util.h"
 
 namespace photon {
@@ -45,6 +47,18 @@ TEST(SceneMedia, DensityAndAlbedoGiveTheCoefficients) {
     // Without a box, the scene's bounds (with a margin).
     EXPECT_LE(md.lower.x, s.boundsMin.x);
     EXPECT_GE(md.upper.x, s.boundsMax.x);
+}
+
+// The range's ends are accepted as written: 0.99 as a float lies above 0.99 and was refused as
+// "must be in [-0.99, 0.99] (got 0.99)" (issue 57).
+TEST(SceneMedia, TheEndsOfARangeAreAccepted) {
+    for (double g : {0.99, -0.99}) {
+        Scene s = load(R"({"fog": {"scattering": 0.2, "g": )" + formatNumber(g) + "}}", R"("fog")");
+        EXPECT_LE(std::abs(s.media[s.medium].g), 0.99f);
+        EXPECT_NEAR(s.media[s.medium].g, g, 1e-6);
+    }
+    EXPECT_NE(errorOf(R"({"fog": {"scattering": 0.2, "g": 0.995}})", "").find("must be in [-0.99, 0.99] (got 0.995)"),
+              std::string::npos);
 }
 
 TEST(SceneMedia, MediumFillsTheBoxGiven) {

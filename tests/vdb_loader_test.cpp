@@ -9,6 +9,8 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -249,7 +251,29 @@ TEST_F(VdbLoader, MissingGridListsTheGrids) {
                 "smoke");
     expectError(file, "grid 'v' holds vec3s values; densities are grids of floats", "v");
     expectError(writeVdb("vectors.vdb", {velocity}),
-                "no grid of floats (FloatGrid or DoubleGrid) in the file; its grids: 'v' (vec3s)");
+                "no grid of floats (FloatGrid or DoubleGrid: OpenVDB's Tree_float_5_4_3 or Tree_double_5_4_3) in the file; its grids: 'v' (vec3s)");
+}
+
+// A float tree of another configuration (or a damaged type name) is not "float values" refused
+// as not floats (issue 57).
+TEST_F(VdbLoader, AnotherTreeConfigurationIsNamedAsSuch) {
+    std::string file = writeVdb("config.vdb", {probeGrid("density", Coord(0), Coord(2, 2, 2))});
+    std::string bytes;
+    {
+        std::ifstream in(file, std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    for (std::size_t at = bytes.find("Tree_float_5_4_3"); at != std::string::npos; at = bytes.find("Tree_float_5_4_3", at)) {
+        bytes.replace(at, 16, "Tree_float_5_4_4");
+    }
+    std::string patched = path("config-544.vdb");
+    std::ofstream(patched, std::ios::binary) << bytes;
+    for (const char* grid : {"density", ""}) {
+        std::string message = errorOf(patched, grid, 64);
+        EXPECT_EQ(message.find("holds float values"), std::string::npos) << message;
+        EXPECT_NE(message.find("Tree_float_5_4_4"), std::string::npos) << message;
+    }
+    expectError(patched, "grid 'density' holds a tree of type 'Tree_float_5_4_4', not OpenVDB's standard", "density");
 }
 
 TEST_F(VdbLoader, NegativeOrNonFiniteVoxelsAreRefused) {
@@ -436,6 +460,9 @@ TEST_F(VdbLoader, SmokePlumeRoundTrips) {
     std::string command =
         std::string(PHOTON_MAKE_SMOKE_VDB) + " '" + file + "' --resolution " + std::to_string(n) + " --seed 5 2>/dev/null";
     ASSERT_EQ(std::system(command.c_str()), 0) << command;
+    std::string misnamed = std::string(PHOTON_MAKE_SMOKE_VDB) + " '" + path("plume.png") + "' --resolution 4 2>/dev/null";
+    EXPECT_EQ(WEXITSTATUS(std::system(misnamed.c_str())), 2) << "a name that is no .vdb";
+    EXPECT_FALSE(std::ifstream(path("plume.png")).good());
     DensityGrid plume = tools::makeSmokePlume(glm::uvec3(n, 2 * n, n), 5);
     // The box of the voxels of at least 1e-3.
     glm::uvec3 first(~0u);

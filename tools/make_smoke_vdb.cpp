@@ -47,6 +47,9 @@ int run(int argc, char** argv) {
     if (int code = parseCommandLine(app, argc, argv); code >= 0) {
         return code;
     }
+    if (output.size() < 4 || output.compare(output.size() - 4, 4, ".vdb") != 0) {
+        throw InputError(output + ": an OpenVDB file's name ends in .vdb (scene files name grids by it)");
+    }
     checkOutputPath(output, "OpenVDB file");
     glm::uvec3 size(resolution, 2 * resolution, resolution);
     DensityGrid plume = tools::makeSmokePlume(size, seed);

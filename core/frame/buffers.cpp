@@ -117,6 +117,13 @@ const char* whatToLower(std::uint32_t sizeClass) {
     throw std::logic_error("unknown buffer size class");
 }
 
+const char* whatToLowerFor(std::uint32_t binding) {
+    if (binding == BINDING_DENSITIES) {
+        return "lower the density grids' resolution (a medium's \"grid\": {\"resolution\": ...}, 256 by default)";
+    }
+    return whatToLower(bufferInfo(binding).size);
+}
+
 std::uint64_t hostBytesPerPixel(bool denoise, bool aov) {
     return kHostBytesPerPixel + (denoise ? sizeof(glm::vec4) : 0u) + (aov ? sizeof(PixelAov) + 4 * sizeof(glm::vec4) : 0u);
 }
@@ -160,7 +167,7 @@ void checkMemory(const BufferPlan& plan, const MemoryLimits& limits, std::uint32
             throw InputError("buffer '" + std::string(info.name) + "' needs " + formatMiB(plan.bytes(b)) +
                              (info.size == BUFFER_PER_SCENE ? "" : size) + ", more than the " +
                              formatMiB(limits.perBuffer) + " one buffer may span on " + limits.device + " (" +
-                             limits.perBufferLimit + "); " + whatToLower(info.size));
+                             limits.perBufferLimit + "); " + whatToLowerFor(b));
         }
         if (plan.bytes(b) > plan.bytes(largest)) {
             largest = b;
@@ -171,7 +178,7 @@ void checkMemory(const BufferPlan& plan, const MemoryLimits& limits, std::uint32
         throw InputError("the buffers need " + formatMiB(plan.totalBytes()) + size + ", more than the " +
                          formatMiB(limits.total) + " of " + limits.memory + " on " + limits.device +
                          "; the largest is '" + info.name + "' (" + formatMiB(plan.bytes(largest)) + "): " +
-                         whatToLower(info.size));
+                         whatToLowerFor(largest));
     }
 }
 

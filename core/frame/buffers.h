@@ -67,6 +67,9 @@ std::uint64_t hostBytesPerPixel(bool denoise, bool aov);
 
 // The setting that shrinks buffers of a BUFFER_PER_* class, for messages.
 const char* whatToLower(std::uint32_t sizeClass);
+// ... for one buffer: its class's, but a scene array that one key sizes names it (the media's
+// density voxels: their grids' resolution).
+const char* whatToLowerFor(std::uint32_t binding);
 
 std::string formatMiB(std::uint64_t bytes);
 

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <initializer_list>
+#include <cmath>
 #include <limits>
 #include <string>
 #include <utility>
@@ -100,9 +101,14 @@ public:
         if (!(std::abs(x) <= std::numeric_limits<float>::max())) {
             fail("must be a finite number within the range of a float (got " + value_.dump() + ")");
         }
-        auto f = static_cast<float>(x);
-        if (!range.contains(f)) {
+        if (!range.contains(x)) {
             fail("must be " + range.describe() + " (got " + value_.dump() + ")");
+        }
+        // The float nearest x, stepped back inside where rounding left the range (0.99 as a float
+        // is 0.9900000095; 1e-50 in a positive range rounds to 0).
+        auto f = static_cast<float>(x);
+        for (int step = 0; step < 2 && !range.contains(f); ++step) {
+            f = std::nextafter(f, f > x ? -std::numeric_limits<float>::infinity() : std::numeric_limits<float>::infinity());
         }
         return f;
     }

@@ -458,7 +458,8 @@ std::string vdbGridStream(const std::string& bytes, const VdbLayout& layout, std
     const ValueLayout* value = treeLayout(owner->type);
     if (!value || owner->type != grid.type || (owner->type != kTrees[0].type && owner->type != kTrees[1].type)) {
         throw InputError(path + ": " + gridLabel(grid.name) + " is a " + printable(quote(owner->type)) +
-                         "; densities are grids of floats (FloatGrid or DoubleGrid)");
+                         ", not OpenVDB's standard Tree_float_5_4_3 or Tree_double_5_4_3 (densities are grids of floats; "
+                         "another tree configuration, or a damaged type name)");
     }
     GridBody own = walkBody(bytes, grid, value, false, valuesMax, path);
     GridBody tree = owner == &grid ? own : walkBody(bytes, *owner, value, true, valuesMax, path);

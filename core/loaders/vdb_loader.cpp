@@ -66,7 +66,9 @@ std::string typeLabel(const std::string& type) {
     std::string value = vdbValueType(type);
     auto wordChar = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
     bool word = !value.empty() && value.size() <= 24 && std::all_of(value.begin(), value.end(), wordChar);
-    return word ? value : label(value);
+    // OpenVDB's standard configuration by its value type alone; any other tree by its whole type.
+    bool standard = type == "Tree_" + value + "_5_4_3";
+    return word && standard ? value : label(standard ? value : type);
 }
 
 // The grids of a file, for the messages that ask for one of them: 'density' (float), 'v' (vec3s).
@@ -108,13 +110,20 @@ std::size_t pickGrid(const VdbLayout& layout, const std::string& name, const std
         throw InputError(path + ": a VDB file without grids");
     }
     if (found == grids.size()) {
-        std::string missing = name.empty() ? "no grid of floats (FloatGrid or DoubleGrid)" : "no grid named " + label(name);
+        std::string missing = name.empty() ? "no grid of floats (FloatGrid or DoubleGrid: OpenVDB's Tree_float_5_4_3 or Tree_double_5_4_3)"
+                                           : "no grid named " + label(name);
         throw InputError(path + ": " + missing + " in the file; its grids: " + gridList(layout));
     }
     if (!scalar(found)) {
-        throw InputError(path + ": grid " + label(name) + " holds " + typeLabel(grids[found].type) +
-                         " values; densities are grids of floats (FloatGrid or DoubleGrid); the file's grids: " +
-                         gridList(layout));
+        std::string value = vdbValueType(grids[found].type);
+        // A float or double tree of another configuration (or a damaged type name) is no grid of
+        // "float values" to refuse as one.
+        std::string what = value == "float" || value == "double"
+                               ? "a tree of type " + label(grids[found].type) +
+                                     ", not OpenVDB's standard Tree_float_5_4_3 or Tree_double_5_4_3 (another tree "
+                                     "configuration, or a damaged type name)"
+                               : typeLabel(grids[found].type) + " values; densities are grids of floats (FloatGrid or DoubleGrid)";
+        throw InputError(path + ": grid " + label(name) + " holds " + what + "; the file's grids: " + gridList(layout));
     }
     return found;
 }
