@@ -14,6 +14,7 @@
 //                (the BVH build alone: median time, its phases and the SAH cost; no frames)
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 
 #include <CLI/CLI.hpp>
 
@@ -125,10 +126,23 @@ void runPhotonUse(const BenchOptions& o, const CaseLists& lists) {
     benchPhotonUse(*backend, cases, o.photonUse);
 }
 
+// The scenes of the source tree the program was built from, or where it is installed the ones
+// installed beside it (share/photon/scenes), or the source tree's again (for the message).
+std::string defaultScenesDir() {
+    std::error_code error;
+    if (std::filesystem::is_directory(PHOTON_SCENES_DIR, error)) {
+        return PHOTON_SCENES_DIR;
+    }
+    std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", error);
+    std::filesystem::path installed = self.parent_path() / PHOTON_INSTALLED_SCENES;
+    return !error && std::filesystem::is_directory(installed, error) ? installed.lexically_normal().string() : PHOTON_SCENES_DIR;
+}
+
 int run(int argc, char** argv) {
     CLI::App app{"Photon benchmark: per-stage times over scenes, resolutions, photon counts and backends",
                  "photon-bench"};
     BenchOptions o;
+    o.scenesDir = defaultScenesDir();
     addOptions(app, o);
     if (int code = parseCommandLine(app, argc, argv); code >= 0) {
         return code;

@@ -55,7 +55,8 @@ int run(int argc, char** argv) {
     addRenderOptions(app, render);
     // --frames makes a run scripted; --view also takes the viewer's own "dots".
     app.get_option("--frames")->description("Render this many frames, then exit (scripted use)");
-    app.get_option("--view")->description("What to show: final|direct|global|caustic|dots|grid|albedo|normal|depth");
+    const std::string views = findSetting("view")->choices + "|dots|albedo|normal|depth";
+    app.get_option("--view")->description("What to show: " + views);
     if (int code = parseCommandLine(app, argc, argv); code >= 0) {
         return code;
     }
@@ -75,10 +76,10 @@ int run(int argc, char** argv) {
         }
     }
     if (ownView) {
-        viewName = "final";
+        // What the renderer runs under them: the dots need no estimates (direct light only).
+        viewName = o.view == viewer::DisplayView::Dots ? "direct" : "final";
     } else if (View v; !viewName.empty() && !parse(viewName, v)) {
-        throw InputError("--view: unknown value '" + viewName +
-                         "' (expected final|direct|global|caustic|dots|grid|albedo|normal|depth)");
+        throw InputError("--view: unknown value '" + viewName + "' (expected " + views + ")");
     }
     o.paths = render.paths;
     o.scene = app.count("scene") == 0 ? defaultScene() : loadSceneFile(o.scenePath, o.paths);

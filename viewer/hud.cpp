@@ -58,14 +58,20 @@ bool sliderCount(const char* label, std::uint32_t& value, float lo, float hi) {
     return false;
 }
 
-void statsSection(const HudInfo& info) {
+// The numbers of the frame before the one the HUD is drawn over: it is built while the GPU runs
+// that frame. Lines wrap at the window's edge; below 720 pixels of window the stage times start
+// folded, so that the HUD leaves most of the image to see.
+void statsSection(const HudInfo& info, bool stagesOpen) {
+    ImGui::PushTextWrapPos(0.0f);
     ImGui::Text("%s", info.device.c_str());
     ImGui::Text("%.1f fps (%.2f ms)   %s", info.fps, info.frame.loopMs, info.presentMode);
     ImGui::Text("frames accumulated %u", info.accumulated);
     ImGui::Text("%.1f M photons/s (%llu paths a frame)", info.frame.photonsPerSecond * 1e-6,
                 static_cast<unsigned long long>(info.stats.emittedPaths()));
     ImGui::Text("stored %s", info.stats.storedList(true).c_str());
-    if (ImGui::BeginTable("stages", 2, ImGuiTableFlags_SizingFixedFit)) {
+    ImGui::PopTextWrapPos();
+    ImGui::SetNextItemOpen(stagesOpen, ImGuiCond_FirstUseEver);
+    if (ImGui::CollapsingHeader("Stage times") && ImGui::BeginTable("stages", 2, ImGuiTableFlags_SizingFixedFit)) {
         const StageTimes& s = info.frame.stages;
         const PassTimes& p = info.frame.passes;
         std::vector<std::pair<const char*, double>> rows;
@@ -239,7 +245,8 @@ void helpSection() {
         "left drag: orbit     right drag: look around\n"
         "middle / shift+left drag: pan     wheel: zoom\n"
         "W A S D: fly   Q E: down, up   shift: faster\n"
-        "1-6: final direct global caustic dots grid\n"
+        "1-9, 0: final direct global caustic dots grid\n"
+        "        albedo normal depth volume\n"
         "arrows, PgUp/PgDn: move the selected light\n"
         "+ -: exposure   V: vsync   H/F1: HUD\n"
         "F5: reload scene (or drop a file)   R: reset camera\n"
@@ -269,7 +276,7 @@ void buildHud(ViewState& state, LightEditor& lights, const HudInfo& info) {
         return;
     }
     ImGui::PushItemWidth(-130.0f);  // room for the labels
-    statsSection(info);
+    statsSection(info, layout.renderOpen);
     ImGui::SetNextItemOpen(layout.renderOpen, ImGuiCond_FirstUseEver);
     if (ImGui::CollapsingHeader("Render")) {
         renderSection(state, info);

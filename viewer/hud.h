@@ -29,8 +29,9 @@ struct HudInfo {
 
 // Where the panel starts in a window of this size: 340 px wide where there is room, never more
 // than 36% of the window (at least 240 px), never taller than the window (it scrolls), and the
-// Render section open only in a window tall enough to show it whole (at 640×480 the open panel
-// covered 55% of the image and was cut off at the bottom).
+// Render section and the stage times open only in a window tall enough to show them whole (at
+// 640×480 the open panel covered 55% of the image and was cut off at the bottom; with the stage
+// times open, 84% of its height).
 struct HudLayout {
     float width = 340.0f;
     float maxHeight = 0.0f;

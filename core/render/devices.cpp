@@ -102,7 +102,7 @@ std::unique_ptr<Renderer> createRenderer(const std::string& kinds, const DeviceO
     }
     if (choices.size() != 1 && choices.size() != names.size()) {
         throw InputError("--device '" + options.device + "': " + std::to_string(choices.size()) + " entries for " +
-                         std::to_string(names.size()) + " devices (give one for all or one each)");
+                         std::to_string(names.size()) + (names.size() == 1 ? " device" : " devices") + " (give one for all or one each)");
     }
     std::vector<std::unique_ptr<Device>> devices;
     for (std::size_t i = 0; i < names.size(); ++i) {
