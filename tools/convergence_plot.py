@@ -60,6 +60,14 @@ def main():
     settings = dict(backend=args.backend, width=args.width, height=args.height, denoise=False)
     if args.photons:
         settings["photons"] = args.photons
+    # Every estimator, the scene and the settings are checked before the reference's minutes:
+    # a renderer of each is made (and dropped) now, a bad one refused in one line, exit 2.
+    try:
+        for estimator in args.estimators.split(","):
+            photon.Renderer(args.scene, estimator=estimator, seed=args.seed, **settings)
+    except ValueError as error:
+        print(f"convergence_plot.py: {error}", file=sys.stderr)
+        sys.exit(2)
     if args.reference:
         reference = photon.read_image(args.reference)
         reference_text = "reference " + os.path.basename(args.reference)
@@ -83,7 +91,7 @@ def main():
     curves = {}
     device = photons = None
     for estimator in args.estimators.split(","):
-        renderer = photon.Renderer(args.scene, estimator=estimator, frames=100000, seed=args.seed, **settings)
+        renderer = photon.Renderer(args.scene, estimator=estimator, seed=args.seed, **settings)
         frames, spent, rows = 0, 0.0, []
         target = 1
         while spent < args.seconds:
