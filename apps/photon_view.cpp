@@ -55,8 +55,8 @@ int run(int argc, char** argv) {
     addRenderOptions(app, render);
     // --frames makes a run scripted; --view also takes the viewer's own "dots".
     app.get_option("--frames")->description("Render this many frames, then exit (scripted use)");
-    const std::string views = findSetting("view")->choices + "|dots|albedo|normal|depth";
-    app.get_option("--view")->description("What to show: " + views);
+    const std::string viewNames = findSetting("view")->choices + "|dots|albedo|normal|depth";
+    app.get_option("--view")->description("What to show: " + viewNames);
     if (int code = parseCommandLine(app, argc, argv); code >= 0) {
         return code;
     }
@@ -79,7 +79,7 @@ int run(int argc, char** argv) {
         // What the renderer runs under them: the dots need no estimates (direct light only).
         viewName = o.view == viewer::DisplayView::Dots ? "direct" : "final";
     } else if (View v; !viewName.empty() && !parse(viewName, v)) {
-        throw InputError("--view: unknown value '" + viewName + "' (expected " + views + ")");
+        throw InputError("--view: unknown value '" + viewName + "' (expected " + viewNames + ")");
     }
     o.paths = render.paths;
     o.scene = app.count("scene") == 0 ? defaultScene() : loadSceneFile(o.scenePath, o.paths);
