@@ -213,22 +213,18 @@ PH_CONST uint DENOISE_TEMPORAL_FRAMES = 4u;
 PH_CONST float DENOISE_MIN_ALBEDO = 0.01f;
 // The denoiser's images, planes of one uvec4 a pixel in the `denoisePlanes` buffer (plane p of
 // pixel i at p · pixels + i): two of the demodulated radiance and its variance (float bits), which
-// the levels read from and write to in turn, the packed guides, and at the level running each
-// pixel's sum of weights (x) and its eight tap weights (two planes; denoise.h).
+// the levels read from and write to in turn, and the packed guides (denoise.h).
 PH_CONST uint DENOISE_PLANE_RADIANCE = 0u;  // and 1
 PH_CONST uint DENOISE_PLANE_GUIDE = 2u;
-PH_CONST uint DENOISE_PLANE_WEIGHTS = 3u;
-PH_CONST uint DENOISE_PLANE_TAPS = 4u;  // and 5
-PH_CONST uint DENOISE_PLANES = 6u;
+PH_CONST uint DENOISE_PLANES = 3u;
 // The guides keep albedos in [0, DENOISE_ALBEDO_RANGE] to 10 bits a channel (only the edge-stopping
 // weight reads them; remodulation reads the pixel's own albedo whole).
 PH_CONST float DENOISE_ALBEDO_RANGE = 2.0f;
-// The denoise stage's passes: the guides and variance (prepare), the variance blurred, then two a
-// level, its weights' sums and the level itself (the last multiplies the albedo back).
+// The denoise stage's passes: the guides and variance (prepare), the levels, then the image
+// (the last level multiplies the albedo back).
 PH_CONST uint DENOISE_PASS_PREPARE = 0u;
-PH_CONST uint DENOISE_PASS_VARIANCE = 1u;
-PH_CONST uint DENOISE_PASS_LEVEL = 2u;  // level i's weights are pass DENOISE_PASS_LEVEL + 2i, the level the next
-PH_CONST uint DENOISE_PASS_COUNT = DENOISE_PASS_LEVEL + 2u * DENOISE_LEVELS;
+PH_CONST uint DENOISE_PASS_LEVEL = 1u;  // level i is pass DENOISE_PASS_LEVEL + i
+PH_CONST uint DENOISE_PASS_COUNT = DENOISE_PASS_LEVEL + DENOISE_LEVELS;
 
 // Independent random streams, so that no two stages draw the same numbers.
 PH_CONST uint STREAM_PHOTON = 0x1b873593u;

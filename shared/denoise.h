@@ -6,17 +6,13 @@
 //            textures are not blurred), its variance (from the frames' luminance moments, or over
 //            the 7 × 7 neighbours while a pixel has few frames) and the guides: unit normal, depth
 //            and its slope |∇z|;
-//   variance the variance blurred 3 × 3 (SVGF), once for all levels;
 //   level i  a 3 × 3 binomial kernel (1 2 1)/4 with holes 2^i, each tap weighted by how alike
 //            the two pixels' normals, depths, albedos and luminances are, the luminance relative
-//            to the larger standard deviation of the two; a first pass sums each pixel's weights,
-//            the second moves light between pixels by them so that none is made or lost (a
-//            doubly stochastic filter: denoiseLevel). The last level multiplies the albedo back.
-// A level's weights pass reads 32 bytes a tap, the neighbour's radiance and standard deviation and
-// its guides packed into 16 (DenoiseGuide), and writes the pixel's eight tap weights and their
-// sum; the level reads them and 20 bytes a tap (radiance, the neighbour's sum). Each is a plane of
-// its own (constants.h), so that a warp's reads use every byte of the sectors they fetch.
-// Four departures from SVGF, each measured against converged references (docs/denoising.md):
+//            to the standard deviation. The last level multiplies the albedo back.
+// The levels read 32 bytes a tap: the neighbour's radiance and variance, and its guides packed
+// into 16 (DenoiseGuide), each from a plane of its own (constants.h), so that a warp's reads use
+// every byte of the sectors they fetch.
+// Three departures from SVGF, each measured against converged references (docs/denoising.md):
 // - A 3 × 3 kernel, not SVGF's 5 × 5 B3 spline: over the same five levels it reaches 31 pixels,
 //   not 62, with 9 taps, not 25, and on all five measured scenes it was as good or better (the
 //   glass bunny 6.38% → 6.08% away from its caustic's focus, the sky 7.42% → 6.57%): a photon
@@ -28,9 +24,6 @@
 // - The variance leaves the caustic map out (aov.h), so that a focus, whose frames vary by more
 //   than its contrast, keeps its edges: its surroundings' variance is the global map's. (Left
 //   out of the filter instead, the caustic map's speckle over the floor and walls stays.)
-// - Doubly stochastic levels (above), where SVGF's normalize each pixel's weights and so move
-//   light toward pixels with few similar neighbours: the image's mean within 1% of the raw
-//   one's at every size (1 × N included) and in every view.
 #ifndef PHOTON_SHARED_DENOISE_H
 #define PHOTON_SHARED_DENOISE_H
 
@@ -204,124 +197,64 @@ PH_FN float blurredVariance(BUF_PARAM uint x, uint y, uint plane) {
     return sum / weights;
 }
 
-// Pass variance of one pixel: the prepared plane into the other, its variance blurred and as a
-// standard deviation (the levels all use the same, their own and each neighbour's).
-PH_FN void denoiseVariance(BUF_PARAM uint pixel) {
-    uint width = BUF(params).width;
-    vec4 own = denoiseRadiance(BUF_ARG DENOISE_PLANE_RADIANCE, pixel);
-    own.w = sqrt(blurredVariance(BUF_ARG pixel % width, pixel / width, DENOISE_PLANE_RADIANCE));
-    PH_STORE_UVEC4(BUF(denoisePlanes)[denoiseSlot(BUF_ARG DENOISE_PLANE_RADIANCE + 1u, pixel)], floatBitsToUint(own));
-}
-
-// The weight of the tap from pixel p to its neighbour q of a level (kernel times edge-stopping),
-// the same seen from either pixel: each term takes the larger of the two pixels' variance, slope
-// and depth, and the normal weight is the squared cosine of both.
-PH_FN float denoiseTapWeight(PH_IN(DenoiseGuide) guide, vec3 normal, vec4 centre, PH_IN(DenoiseGuide) g, vec4 c, int dx,
-                             int dy, int hole) {
-    float wn = normalWeight(normal, g.normal);
-    if (wn == 0.0f) {
-        return 0.0f;
-    }
-    float distance = float(hole) * length(vec2(float(dx), float(dy)));
-    float reach = DENOISE_SIGMA_DEPTH * max(guide.slope, g.slope);
-    float depthFloor = 1.0e-3f * max(guide.depth, g.depth) + 1.0e-6f;
-    float wz = PH_WEIGHT_DIVIDE(abs(guide.depth - g.depth), reach * distance + depthFloor);
-    float sigmaL = DENOISE_SIGMA_LUMINANCE * max(centre.w, c.w) + 1.0e-6f;
-    float wl = PH_WEIGHT_DIVIDE(abs(luminanceOf(vec3(centre)) - luminanceOf(vec3(c))), sigmaL);
-    vec3 da = abs(guide.albedo - g.albedo);
-    float wa = (da.x + da.y + da.z) * (1.0f / DENOISE_SIGMA_ALBEDO);
-    return kernelWeight(dx) * kernelWeight(dy) * wn * PH_WEIGHT_EXP(-wz - wl - wa);
-}
-
-PH_FN float denoiseWeightSum(BUF_PARAM uint pixel) {
-    return uintBitsToFloat(BUF(denoisePlanes)[denoiseSlot(BUF_ARG DENOISE_PLANE_WEIGHTS, pixel)].x);
-}
-
-// The source plane of level `level` (the variance pass writes plane 1, then the levels alternate).
-PH_FN uint denoiseSource(uint level) { return DENOISE_PLANE_RADIANCE + ((level + 1u) & 1u); }
-
-// Tap k (0 … 7) of the 3 × 3 kernel without its centre, row by row.
-PH_FN ivec2 denoiseTap(uint k) {
-    uint i = k < 4u ? k : k + 1u;
-    return ivec2(int(i % 3u) - 1, int(i / 3u) - 1);
-}
-
-// A level's first pass at one pixel: the weight of each tap (0 where the neighbour lies outside
-// the image or holds no finite radiance) into the two tap planes, and their sum with the kernel's
-// centre (1/4) into the weights plane. A pixel without a surface has its own tap alone.
-PH_FN void denoiseWeights(BUF_PARAM uint pixel, uint level) {
+// Pass `level` (0 .. DENOISE_LEVELS - 1) of one pixel: reads plane level % 2, writes the other;
+// the last level writes the image into `denoised`.
+PH_FN void denoiseLevel(BUF_PARAM uint pixel, uint level) {
     uint width = BUF(params).width;
     uint height = BUF(params).height;
     uint x = pixel % width;
     uint y = pixel / width;
-    uint source = denoiseSource(level);
+    uint source = DENOISE_PLANE_RADIANCE + (level & 1u);
     vec4 centre = denoiseRadiance(BUF_ARG source, pixel);
     DenoiseGuide guide = denoiseGuide(BUF_ARG pixel);
-    float taps[8];
-    float weights = kernelWeight(0) * kernelWeight(0);
-    bool filters = dot(guide.normal, guide.normal) > 0.0f && isFinite(vec3(centre));
-    vec3 normal = filters ? unitVector(guide.normal) : vec3(0.0f);
-    int hole = 1 << int(level);
-    for (uint k = 0u; k < 8u; ++k) {
-        ivec2 d = denoiseTap(k);
-        int qx = int(x) + d.x * hole;
-        int qy = int(y) + d.y * hole;
-        taps[k] = 0.0f;
-        if (!filters || qx < 0 || qy < 0 || qx >= int(width) || qy >= int(height)) {
-            continue;
-        }
-        uint q = uint(qy) * width + uint(qx);
-        vec4 c = denoiseRadiance(BUF_ARG source, q);
-        if (isFinite(vec3(c))) {
-            taps[k] = denoiseTapWeight(guide, normal, centre, denoiseGuide(BUF_ARG q), c, d.x, d.y, hole);
-            weights += taps[k];
-        }
-    }
-    BUF(denoisePlanes)[denoiseSlot(BUF_ARG DENOISE_PLANE_WEIGHTS, pixel)] = uvec4(floatBitsToUint(weights), 0u, 0u, 0u);
-    PH_STORE_UVEC4(BUF(denoisePlanes)[denoiseSlot(BUF_ARG DENOISE_PLANE_TAPS, pixel)],
-                   floatBitsToUint(vec4(taps[0], taps[1], taps[2], taps[3])));
-    PH_STORE_UVEC4(BUF(denoisePlanes)[denoiseSlot(BUF_ARG DENOISE_PLANE_TAPS + 1u, pixel)],
-                   floatBitsToUint(vec4(taps[4], taps[5], taps[6], taps[7])));
-}
-
-// Pass `level` (0 .. DENOISE_LEVELS - 1) of one pixel: reads plane denoiseSource(level), writes
-// the other; the last level writes the image into `denoised`. A doubly stochastic filter:
-//   x'_p = x_p + Σ_q w_pq (x_q − x_p) / max(W_p, W_q),   W_p = Σ_q w_pq (the weights pass),
-// with w_pq = w_qp. Its rows sum to 1, so a constant stays constant, and as w_pq / max(W_p, W_q) is
-// symmetric its columns do too, so the light a pixel gives is the light its neighbours take: the
-// image keeps its energy at every size and in every view. (A gather x_p = Σ w_pq x_q / W_p keeps
-// constants but not energy: a noisy bright pixel gave its light to quiet dark neighbours, whose
-// few similar neighbours made their W small; 22% of a 1 × 2000 image was lost, issue 57.) Each
-// tap's share is at most its gather weight, the rest staying with the pixel.
-PH_FN void denoiseLevel(BUF_PARAM uint pixel, uint level) {
-    uint width = BUF(params).width;
-    uint x = pixel % width;
-    uint y = pixel / width;
-    uint source = denoiseSource(level);
-    vec4 centre = denoiseRadiance(BUF_ARG source, pixel);
     vec4 filtered = centre;
-    float own = denoiseWeightSum(BUF_ARG pixel);
-    if (own > kernelWeight(0) * kernelWeight(0)) {  // a neighbour takes part
-        vec4 near = uintBitsToFloat(PH_LOAD_UVEC4(BUF(denoisePlanes)[denoiseSlot(BUF_ARG DENOISE_PLANE_TAPS, pixel)]));
-        vec4 far = uintBitsToFloat(PH_LOAD_UVEC4(BUF(denoisePlanes)[denoiseSlot(BUF_ARG DENOISE_PLANE_TAPS + 1u, pixel)]));
-        float taps[8] = {near.x, near.y, near.z, near.w, far.x, far.y, far.z, far.w};
+    if (dot(guide.normal, guide.normal) > 0.0f) {
+        vec3 normal = unitVector(guide.normal);
+        float luminance = luminanceOf(vec3(centre));
+        // Level 0 blurs the variance and passes it on: the levels all use the same.
+        float variance = level == 0u ? blurredVariance(BUF_ARG x, y, source) : centre.w;
+        float toSigmasL = 1.0f / (DENOISE_SIGMA_LUMINANCE * sqrt(variance) + 1.0e-6f);
+        float reach = DENOISE_SIGMA_DEPTH * guide.slope;
+        float depthFloor = 1.0e-3f * guide.depth + 1.0e-6f;
         int hole = 1 << int(level);
-        vec3 change = vec3(0.0f);
-        for (uint k = 0u; k < 8u; ++k) {
-            if (taps[k] > 0.0f) {
-                ivec2 d = denoiseTap(k);
-                uint q = uint(int(y) + d.y * hole) * width + uint(int(x) + d.x * hole);
-                vec3 c = vec3(denoiseRadiance(BUF_ARG source, q));
-                change += PH_WEIGHT_DIVIDE(taps[k], max(own, denoiseWeightSum(BUF_ARG q))) * (c - vec3(centre));
+        vec3 sum = vec3(0.0f);
+        float weights = 0.0f;
+        for (int dy = -1; dy <= 1; ++dy) {
+            for (int dx = -1; dx <= 1; ++dx) {
+                int qx = int(x) + dx * hole;
+                int qy = int(y) + dy * hole;
+                if (qx < 0 || qy < 0 || qx >= int(width) || qy >= int(height)) {
+                    continue;
+                }
+                float h = kernelWeight(dx) * kernelWeight(dy);
+                vec4 c = centre;
+                float w = 1.0f;
+                if (dx != 0 || dy != 0) {
+                    uint q = uint(qy) * width + uint(qx);
+                    c = denoiseRadiance(BUF_ARG source, q);
+                    if (!isFinite(vec3(c))) {
+                        continue;  // no neighbour's overflow reaches this pixel
+                    }
+                    DenoiseGuide g = denoiseGuide(BUF_ARG q);
+                    float wn = normalWeight(normal, g.normal);
+                    float distance = float(hole) * length(vec2(float(dx), float(dy)));
+                    float wz = PH_WEIGHT_DIVIDE(abs(guide.depth - g.depth), reach * distance + depthFloor);
+                    float wl = abs(luminance - luminanceOf(vec3(c))) * toSigmasL;
+                    vec3 da = abs(guide.albedo - g.albedo);
+                    float wa = (da.x + da.y + da.z) * (1.0f / DENOISE_SIGMA_ALBEDO);
+                    w = wn * PH_WEIGHT_EXP(-wz - wl - wa);
+                }
+                sum += (h * w) * vec3(c);
+                weights += h * w;
             }
         }
-        filtered = vec4(vec3(centre) + change, centre.w);
+        filtered = vec4(sum / weights, variance);
         if (!isFinite(vec3(filtered))) {
             filtered = centre;  // the sums overflowed
         }
     }
     if (level + 1u < DENOISE_LEVELS) {
-        PH_STORE_UVEC4(BUF(denoisePlanes)[denoiseSlot(BUF_ARG DENOISE_PLANE_RADIANCE + (level & 1u), pixel)], floatBitsToUint(filtered));
+        PH_STORE_UVEC4(BUF(denoisePlanes)[denoiseSlot(BUF_ARG DENOISE_PLANE_RADIANCE + ((level + 1u) & 1u), pixel)], floatBitsToUint(filtered));
         return;
     }
     PixelAov a = BUF(aovs)[pixel];
@@ -336,12 +269,8 @@ PH_FN void denoiseLevel(BUF_PARAM uint pixel, uint level) {
 PH_FN void denoisePass(BUF_PARAM uint pixel, uint pass) {
     if (pass == DENOISE_PASS_PREPARE) {
         denoisePrepare(BUF_ARG pixel);
-    } else if (pass == DENOISE_PASS_VARIANCE) {
-        denoiseVariance(BUF_ARG pixel);
-    } else if (((pass - DENOISE_PASS_LEVEL) & 1u) == 0u) {
-        denoiseWeights(BUF_ARG pixel, (pass - DENOISE_PASS_LEVEL) / 2u);
     } else {
-        denoiseLevel(BUF_ARG pixel, (pass - DENOISE_PASS_LEVEL) / 2u);
+        denoiseLevel(BUF_ARG pixel, pass - DENOISE_PASS_LEVEL);
     }
 }
 

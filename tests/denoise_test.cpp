@@ -85,9 +85,7 @@ TEST(Denoise, KeepsTheFurnaceEnergyAndLowersItsNoise) {
     EXPECT_LT(deviation(r.denoised), 0.5 * deviation(r.raw));
 }
 
-// The Cornell box's back wall, a flat diffuse surface: its mean stays within 2%. (The levels keep
-// the image's energy exactly, but smoothing the wall's falloff from the light moves a little of
-// this window's light to the wall below it: 1.4% here at 160 × 120 and 4 frames, 0.7% at 320 × 240.)
+// The Cornell box's back wall, a flat diffuse surface: its mean stays within 1%.
 TEST(Denoise, KeepsAFlatWallsEnergy) {
     Scene scene = loadSceneFile(test::scenesDir() + "/cornell.json");
     RenderSettings s = test::sizedSettings(scene.render, 160, 120, 20000);
@@ -97,36 +95,7 @@ TEST(Denoise, KeepsAFlatWallsEnergy) {
     double raw = meanLuminanceIn(r.raw, 50, 25, 110, 60);
     double denoised = meanLuminanceIn(r.denoised, 50, 25, 110, 60);
     std::printf("back wall: mean %.4f raw, %.4f denoised\n", raw, denoised);
-    EXPECT_NEAR(denoised / raw, 1.0, 0.02);
-}
-
-// Every image size and view keeps the raw image's energy (issue 57: a 1 × 2000 image lost 22%,
-// 4 × 400 up to 12%, the fog's volume view 13%, where a noisy bright pixel gave its light to
-// quieter neighbours that took none back). The deviation of each case is printed.
-TEST(Denoise, KeepsTheEnergyOfThinImagesAndEveryView) {
-    struct Case {
-        const char* scene;
-        std::uint32_t width, height;
-        View view;
-        double tolerance;
-    };
-    const Case cases[] = {{"cornell.json", 1, 600, View::Final, 0.01},  {"cornell.json", 600, 1, View::Final, 0.01},
-                          {"bunny.json", 4, 300, View::Final, 0.01},     {"godrays.json", 4, 300, View::Final, 0.01},
-                          {"cornell.json", 1, 1, View::Final, 0.01},     {"cornell.json", 2, 3, View::Final, 0.01},
-                          {"fog.json", 80, 60, View::Volume, 0.01},      {"fog.json", 80, 60, View::Final, 0.01},
-                          {"cornell.json", 80, 60, View::Global, 0.01},  {"cornell.json", 80, 60, View::Caustic, 0.01},
-                          {"cornell.json", 80, 60, View::Direct, 0.01}};
-    for (const Case& c : cases) {
-        Scene scene = loadSceneFile(test::scenesDir() + "/" + c.scene);
-        RenderSettings s = test::sizedSettings(scene.render, c.width, c.height, 20000);
-        s.estimator = Estimator::Sppm;
-        s.view = c.view;
-        Renders r = render(scene, s, 6);
-        double raw = meanLuminance(r.raw);
-        double ratio = raw > 0.0 ? meanLuminance(r.denoised) / raw : 1.0;
-        std::printf("%s %ux%u view %u: denoised mean / raw mean %.4f\n", c.scene, c.width, c.height, unsigned(c.view), ratio);
-        EXPECT_NEAR(ratio, 1.0, c.tolerance) << c.scene << " " << c.width << "x" << c.height << " view " << unsigned(c.view);
-    }
+    EXPECT_NEAR(denoised / raw, 1.0, 0.01);
 }
 
 // Against the converged Cornell box (tests/data/README.md), at 320 × 240 and 8 frames of the
