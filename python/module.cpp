@@ -207,6 +207,9 @@ Options readOptions(Scene& scene, const py::kwargs& kwargs, bool stepped) {
             continue;
         }
         if (name == "validation") {
+            if (!py::isinstance<py::bool_>(value)) {
+                throw InputError("validation: expected True or False (got " + printable(py::repr(value).cast<std::string>()) + ")");
+            }
             o.job.device.validation = value.cast<bool>();
             continue;
         }
@@ -220,6 +223,9 @@ Options readOptions(Scene& scene, const py::kwargs& kwargs, bool stepped) {
         if (name == "environment") {
             environment = py::str(py::module_::import("os").attr("fspath")(value));
             refuseNul(environment, "environment");
+            if (environment.empty()) {
+                throw InputError("environment: the path is empty");
+            }
             continue;
         }
         if (name == "environment_intensity") {

@@ -57,6 +57,9 @@ def test_a_dict_and_json_text_equal_the_file():
         (CORNELL, dict(colour=3), "colour: no such keyword"),
         (CORNELL, dict(width=0), "width: must be"),  # the keyword, not the CLI's --width
         (CORNELL, dict(environment_intensity=2), "environment_intensity: only with environment"),
+        (CORNELL, dict(environment=""), "environment: the path is empty"),
+        (CORNELL, dict(environment="/dev/zero"), "a character device, not an environment map"),
+        (CORNELL, dict(validation="maybe"), "validation: expected True or False"),
         ({"render": {"photons": float("nan")}}, {}, "<dict>/render/photons: not a finite number"),
         ({"render": {"photons": {1, 2}}}, {}, "<dict>/render/photons: a set is no JSON value"),
         ("scenes/cornell.json\0.txt", {}, "scene: the path holds a NUL character"),
